@@ -1,0 +1,53 @@
+// edgevio: the command-line program. Parsing only; the work is in the library
+// (src/edgevio/cli/commands.h).
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "edgevio/cli/commands.h"
+
+int main(int argc, char** argv) {
+  using namespace edgevio;
+  CLI::App app{"edgevio " EDGEVIO_VERSION
+               ": edge-alignment stereo visual-inertial odometry for aggressive motion"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", EDGEVIO_VERSION);
+
+  cli::InfoArgs info;
+  auto* info_cmd = app.add_subcommand("info", "Describe an EuRoC/ASL dataset folder as one JSON object");
+  info_cmd->add_option("dataset", info.dataset, "Dataset folder (holding mav0/)")->required();
+  info_cmd->add_option("--config", info.config, "Config file (YAML; default: built-in defaults)");
+
+  auto* run_cmd = app.add_subcommand("run", "Estimate a trajectory from a dataset");
+  run_cmd->allow_extras();
+
+  cli::EvalArgs ev;
+  auto* eval_cmd = app.add_subcommand("eval", "Evaluate an estimated trajectory against ground truth (ATE, RPE, ARE)");
+  eval_cmd->add_option("--gt", ev.gt, "Ground-truth trajectory (TUM or EuRoC CSV)");
+  eval_cmd->add_option("--est", ev.est, "Estimated trajectory (TUM or EuRoC CSV)");
+  eval_cmd->add_option("--results", ev.results_dir, "Evaluate every run folder under DIR; write report.md and report.csv");
+  eval_cmd->add_option("--align", ev.align, "Alignment: se3 | sim3 | posyaw | none (default: config, se3)")
+      ->check(CLI::IsMember({"se3", "sim3", "posyaw", "none"}));
+  eval_cmd->add_option("--delta-m", ev.deltas_m, "RPE travelled-distance delta in metres (repeatable)");
+  eval_cmd->add_option("--segments", ev.segments, "ARE segment lengths: 10%,20%,... or 1m,5m,...");
+  eval_cmd->add_option("--format", ev.format, "Output format")->check(CLI::IsMember({"json", "table"}));
+  eval_cmd->add_option("--plot", ev.plot, "Write an SVG plot (top view and ATE over time)");
+  eval_cmd->add_option("--config", ev.config, "Config file (YAML)");
+
+  auto* sim_cmd = app.add_subcommand("simulate", "Render a synthetic stereo+IMU sequence as an EuRoC ASL folder");
+  sim_cmd->allow_extras();
+  auto* bench_cmd = app.add_subcommand("bench", "Run a benchmark matrix of sequences x modes x skips");
+  bench_cmd->allow_extras();
+  auto* demo_cmd = app.add_subcommand("demo", "Simulate, estimate and evaluate a default sequence");
+  demo_cmd->allow_extras();
+
+  CLI11_PARSE(app, argc, argv);
+
+  if (*info_cmd) return cli::info(info, std::cout, std::cerr);
+  if (*eval_cmd) return cli::eval(ev, std::cout, std::cerr);
+  if (*run_cmd) return cli::notImplemented("run", "the front-end issue", std::cerr);
+  if (*sim_cmd) return cli::notImplemented("simulate", "the simulator issue", std::cerr);
+  if (*bench_cmd) return cli::notImplemented("bench", "the pipeline issue", std::cerr);
+  if (*demo_cmd) return cli::notImplemented("demo", "the pipeline issue", std::cerr);
+  return cli::kExitError;
+}

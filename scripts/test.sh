@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Builds edgevio and runs every test (the README's test command; .ci/run calls it).
+#  1. installs missing Debian packages (scripts/setup.sh, idempotent);
+#  2. Release build with warnings as errors, then all tests (ctest);
+#  3. address+undefined sanitizer build, then the unit tests again.
+# Set EDGEVIO_SKIP_SANITIZE=1 to skip step 3 during development.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=$(nproc 2>/dev/null || echo 2)
+
+bash scripts/setup.sh
+
+echo "== Release build (-Werror) =="
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DEDGEVIO_WERROR=ON >/dev/null
+cmake --build build/release -j"$jobs"
+echo "== All tests =="
+(cd build/release && ctest --output-on-failure -j"$jobs")
+
+if [ "${EDGEVIO_SKIP_SANITIZE:-0}" != "1" ]; then
+  echo "== Sanitizer build (address, undefined) =="
+  cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DEDGEVIO_WERROR=ON -DEDGEVIO_SANITIZE=ON \
+        -DEDGEVIO_BUILD_BENCH=OFF >/dev/null
+  cmake --build build/sanitize -j"$jobs" --target edgevio_unit_tests
+  echo "== Unit tests under sanitizers =="
+  (cd build/sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+     ctest --output-on-failure -j"$jobs" -L unit)
+fi

@@ -1,0 +1,36 @@
+#pragma once
+// The subcommands of the `edgevio` program. apps/edgevio_main.cpp only parses
+// the command line and calls these; each returns the process exit status:
+//   0 success, 1 bad input or failed run (message on err), 2 not implemented.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace edgevio::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitError = 1;
+constexpr int kExitNotImplemented = 2;
+
+struct InfoArgs {
+  std::string dataset;
+  std::string config;  ///< optional config file
+};
+/// `edgevio info DATASET`: one JSON object describing the folder (issue #2).
+int info(const InfoArgs& args, std::ostream& out, std::ostream& err);
+
+struct EvalArgs {
+  std::string gt, est, results_dir, config;
+  std::string align;                  ///< empty: from config
+  std::vector<double> deltas_m;       ///< empty: from config
+  std::string segments;               ///< "10%,20%" or "1m,5m"; empty: from config
+  std::string format = "table";       ///< json | table
+  std::string plot;                   ///< SVG path, optional
+};
+/// `edgevio eval`: trajectory metrics (issue #3).
+int eval(const EvalArgs& args, std::ostream& out, std::ostream& err);
+
+/// Prints "<name>: not implemented yet (...)" and returns kExitNotImplemented.
+int notImplemented(const std::string& name, const std::string& issue, std::ostream& err);
+
+}  // namespace edgevio::cli

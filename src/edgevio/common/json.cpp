@@ -1,0 +1,121 @@
+#include "edgevio/common/json.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace edgevio {
+
+std::string JsonWriter::escape(const std::string& s) {
+  std::string r = "\"";
+  for (unsigned char c : s) {
+    switch (c) {
+      case '"': r += "\\\""; break;
+      case '\\': r += "\\\\"; break;
+      case '\n': r += "\\n"; break;
+      case '\t': r += "\\t"; break;
+      case '\r': r += "\\r"; break;
+      default:
+        if (c < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          r += buf;
+        } else {
+          r += static_cast<char>(c);
+        }
+    }
+  }
+  return r + "\"";
+}
+
+void JsonWriter::newline() {
+  if (!pretty_) return;
+  out_ << '\n' << std::string(2 * has_items_.size(), ' ');
+}
+
+void JsonWriter::separate() {
+  if (after_key_) {
+    after_key_ = false;
+    return;
+  }
+  if (!has_items_.empty()) {
+    if (has_items_.back()) out_ << ',';
+    has_items_.back() = true;
+    newline();
+  }
+}
+
+JsonWriter& JsonWriter::beginObject() {
+  separate();
+  out_ << '{';
+  has_items_.push_back(false);
+  return *this;
+}
+
+JsonWriter& JsonWriter::endObject() {
+  const bool had = has_items_.back();
+  has_items_.pop_back();
+  if (had) newline();
+  out_ << '}';
+  if (has_items_.empty() && pretty_) out_ << '\n';
+  return *this;
+}
+
+JsonWriter& JsonWriter::beginArray() {
+  separate();
+  out_ << '[';
+  has_items_.push_back(false);
+  return *this;
+}
+
+JsonWriter& JsonWriter::endArray() {
+  const bool had = has_items_.back();
+  has_items_.pop_back();
+  if (had) newline();
+  out_ << ']';
+  return *this;
+}
+
+JsonWriter& JsonWriter::key(const std::string& k) {
+  separate();
+  out_ << escape(k) << (pretty_ ? ": " : ":");
+  after_key_ = true;
+  return *this;
+}
+
+JsonWriter& JsonWriter::value(const std::string& v) {
+  separate();
+  out_ << escape(v);
+  return *this;
+}
+
+JsonWriter& JsonWriter::value(double v) {
+  separate();
+  if (!std::isfinite(v)) {
+    out_ << "null";
+  } else {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    out_ << buf;
+  }
+  return *this;
+}
+
+JsonWriter& JsonWriter::value(long long v) {
+  separate();
+  out_ << v;
+  return *this;
+}
+
+JsonWriter& JsonWriter::value(bool v) {
+  separate();
+  out_ << (v ? "true" : "false");
+  return *this;
+}
+
+JsonWriter& JsonWriter::null() {
+  separate();
+  out_ << "null";
+  return *this;
+}
+
+}  // namespace edgevio

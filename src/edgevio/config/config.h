@@ -1,0 +1,39 @@
+#pragma once
+// The edgevio configuration: every parameter of every module, each with a
+// default, a unit and a one-line meaning, written once in its module's
+// Options::visit(). This file combines them into one YAML document
+// (config/euroc.yaml is the documented default) and reads it back; unknown keys,
+// wrong types and invalid values are errors naming the file, line and key.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "edgevio/camera/rectification_options.h"
+#include "edgevio/eval/eval_options.h"
+#include "edgevio/io/dataset_options.h"
+
+namespace edgevio {
+
+struct Config {
+  io::DatasetOptions dataset;
+  camera::RectificationOptions rectification;
+  eval::EvalOptions eval;
+
+  template <class Visitor>
+  void visitSections(Visitor& v) {
+    v("dataset", dataset, "EuRoC/ASL dataset input (METHOD.md §1 driver)");
+    v("rectification", rectification, "stereo rectification (METHOD.md §3 pre-processing)");
+    v("eval", eval, "trajectory evaluation: association, alignment, metrics (METHOD.md §8)");
+  }
+  /// Empty when every section is valid, else the first problem, prefixed by its section.
+  std::string validate() const;
+};
+
+/// Reads a config file over the defaults. Keys absent from the file keep their
+/// defaults and are listed in `missing_keys` (as "section.key") when given.
+Config loadConfig(const std::string& path, std::vector<std::string>* missing_keys = nullptr);
+
+/// Writes the config as YAML with every key, its unit and meaning as comments.
+void writeConfig(std::ostream& out, const Config& config);
+
+}  // namespace edgevio

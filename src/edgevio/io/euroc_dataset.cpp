@@ -1,0 +1,160 @@
+#include "edgevio/io/euroc_dataset.h"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "edgevio/common/error.h"
+#include "edgevio/common/table_reader.h"
+#include "edgevio/io/calibration_io.h"
+
+namespace edgevio::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string formatSeconds(std::int64_t t_ns) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(t_ns) * 1e-9);
+  return buf;
+}
+}  // namespace
+
+EurocDataset::EurocDataset(const std::string& root, const DatasetOptions& options) : options_(options) {
+  const fs::path r(root);
+  if (!fs::is_directory(r)) throw InputError(root, 0, "dataset folder not found (expected an EuRoC ASL folder with mav0/)");
+  mav0_ = fs::is_directory(r / "mav0") ? (r / "mav0").string() : r.string();
+  for (const char* sub : {"cam0", "cam1", "imu0"})
+    if (!fs::is_directory(fs::path(mav0_) / sub))
+      throw InputError(mav0_, 0, std::string("missing folder '") + sub + "' (expected the EuRoC ASL layout mav0/{cam0,cam1,imu0})");
+
+  rig_ = loadEurocCalibration(mav0_);
+  const std::vector<ImageRecord> left = readImageList(0);
+  const std::vector<ImageRecord> right = readImageList(1);
+  pairFrames(left, right);
+  readImu();
+  const fs::path gt = fs::path(mav0_) / "state_groundtruth_estimate0" / "data.csv";
+  if (fs::exists(gt)) ground_truth_ = readTrajectory(gt.string());
+}
+
+std::vector<ImageRecord> EurocDataset::readImageList(int cam) {
+  const fs::path dir = fs::path(mav0_) / ("cam" + std::to_string(cam));
+  TableReader r((dir / "data.csv").string(), TableReader::Separator::kComma);
+  std::vector<ImageRecord> list;
+  std::int64_t last = -1;
+  while (r.next()) {
+    r.requireFields(2, "timestamp [ns],filename");
+    ImageRecord rec;
+    rec.t_ns = r.integer(0);
+    rec.line = r.line();
+    if (rec.t_ns <= last)
+      r.fail(std::string(rec.t_ns == last ? "duplicate" : "decreasing") +
+             " timestamp: image rows must be in strictly increasing time order");
+    last = rec.t_ns;
+    ++rows_[cam];
+    const std::string& name = r.field(1);
+    if (name.empty() || name.find("..") != std::string::npos || name[0] == '/')
+      r.fail("filename '" + name + "' must be a plain file name inside data/");
+    rec.path = (dir / "data" / name).string();
+    if (!fs::is_regular_file(rec.path)) {
+      ++unreadable_[cam];
+      warnings_.push_back(r.path() + ":" + std::to_string(r.line()) + ": image file missing, frame skipped: " + rec.path);
+      continue;
+    }
+    list.push_back(rec);
+  }
+  return list;
+}
+
+void EurocDataset::pairFrames(const std::vector<ImageRecord>& left, const std::vector<ImageRecord>& right) {
+  const auto tol = static_cast<std::int64_t>(std::llround(options_.stereo_sync_tolerance_s * 1e9));
+  std::size_t i = 0, j = 0;
+  while (i < left.size() && j < right.size()) {
+    const std::int64_t d = left[i].t_ns - right[j].t_ns;
+    if (std::llabs(d) <= tol) {
+      pairs_.push_back({left[i].t_ns, left[i], right[j]});
+      ++i;
+      ++j;
+    } else if (d < 0) {
+      ++unpaired_[0];
+      ++i;
+    } else {
+      ++unpaired_[1];
+      ++j;
+    }
+  }
+  unpaired_[0] += left.size() - i;
+  unpaired_[1] += right.size() - j;
+  for (int cam = 0; cam < 2; ++cam)
+    if (unpaired_[cam] > 0)
+      warnings_.push_back("cam" + std::to_string(cam) + ": " + std::to_string(unpaired_[cam]) +
+                          " frame(s) without a partner in the other camera within " +
+                          std::to_string(options_.stereo_sync_tolerance_s) + " s, skipped");
+}
+
+void EurocDataset::readImu() {
+  TableReader r((fs::path(mav0_) / "imu0" / "data.csv").string(), TableReader::Separator::kComma);
+  const auto gap_ns = static_cast<std::int64_t>(std::llround(options_.imu_gap_warning_s * 1e9));
+  while (r.next()) {
+    r.requireFields(7, "timestamp [ns],w_x,w_y,w_z,a_x,a_y,a_z");
+    ImuSample s;
+    s.t_ns = r.integer(0);
+    s.gyro = Vec3(r.number(1), r.number(2), r.number(3));
+    s.accel = Vec3(r.number(4), r.number(5), r.number(6));
+    if (!imu_.empty()) {
+      const std::int64_t dt = s.t_ns - imu_.back().t_ns;
+      if (dt <= 0)
+        r.fail(std::string(dt == 0 ? "duplicate" : "decreasing") +
+               " timestamp: IMU rows must be in strictly increasing time order");
+      if (dt > gap_ns)
+        warnings_.push_back(r.path() + ":" + std::to_string(r.line()) + ": IMU gap of " +
+                            std::to_string(static_cast<double>(dt) * 1e-9) + " s before t = " + formatSeconds(s.t_ns) +
+                            " s");
+    }
+    imu_.push_back(s);
+  }
+  if (imu_.size() < 2) throw InputError(r.path(), 0, "fewer than 2 IMU samples");
+}
+
+double EurocDataset::imuRateHz() const {
+  if (imu_.size() < 2) return 0.0;
+  return static_cast<double>(imu_.size() - 1) / (static_cast<double>(imu_.back().t_ns - imu_.front().t_ns) * 1e-9);
+}
+
+double EurocDataset::durationSeconds() const {
+  if (pairs_.size() < 2) return 0.0;
+  return static_cast<double>(pairs_.back().t_ns - pairs_.front().t_ns) * 1e-9;
+}
+
+std::optional<cv::Mat> EurocDataset::loadImage(int cam, const ImageRecord& rec) {
+  cv::Mat img;
+  try {
+    img = cv::imread(rec.path, cv::IMREAD_GRAYSCALE);
+  } catch (const cv::Exception&) {
+    img.release();
+  }
+  if (img.empty()) {
+    ++unreadable_[cam];
+    warnings_.push_back(rec.path + ": image does not decode, frame skipped");
+    return std::nullopt;
+  }
+  const camera::CameraModel& m = rig_.cam[cam];
+  if (img.cols != m.width || img.rows != m.height)
+    throw InputError(rec.path, 0,
+                     "image is " + std::to_string(img.cols) + "x" + std::to_string(img.rows) + ", but cam" +
+                         std::to_string(cam) + "/sensor.yaml says " + std::to_string(m.width) + "x" +
+                         std::to_string(m.height) + " (fix the resolution in the calibration or the images)");
+  return img;
+}
+
+std::optional<StereoImages> EurocDataset::loadStereo(std::size_t i) {
+  const StereoRecord& rec = pairs_.at(i);
+  std::optional<cv::Mat> left = loadImage(0, rec.left);
+  std::optional<cv::Mat> right = loadImage(1, rec.right);
+  if (!left || !right) return std::nullopt;
+  return StereoImages{rec.t_ns, std::move(*left), std::move(*right)};
+}
+
+}  // namespace edgevio::io

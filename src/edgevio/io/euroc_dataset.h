@@ -1,0 +1,90 @@
+#pragma once
+// Reader of EuRoC ASL folders (also the TUM-VI "euroc" export):
+//   mav0/cam{0,1}/data.csv + data/*.png + sensor.yaml, mav0/imu0/data.csv +
+//   sensor.yaml, optional mav0/state_groundtruth_estimate0/data.csv.
+// Opening reads the CSV indexes, IMU and ground truth; images are decoded one
+// stereo pair at a time (loadStereo), so a sequence is never held in memory.
+//
+// Outcomes for bad input (issue #2):
+//  - image row whose file is missing or does not decode: skipped, counted, one warning;
+//  - frames without a partner in the other camera: skipped, counted;
+//  - malformed rows, NaN/inf, duplicate or decreasing timestamps, an image whose
+//    size differs from the calibration: InputError naming file and line;
+//  - IMU gaps longer than DatasetOptions::imu_gap_warning_s: a warning.
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "edgevio/camera/calibration.h"
+#include "edgevio/io/dataset_options.h"
+#include "edgevio/io/imu_sample.h"
+#include "edgevio/io/trajectory_io.h"
+
+namespace edgevio::io {
+
+struct ImageRecord {
+  std::int64_t t_ns = 0;
+  std::string path;       ///< absolute or dataset-relative image path
+  std::size_t line = 0;   ///< line in data.csv (for messages)
+};
+
+struct StereoRecord {
+  std::int64_t t_ns = 0;  ///< timestamp of the left image
+  ImageRecord left, right;
+};
+
+/// A decoded stereo pair (raw, not yet rectified), 8-bit single channel.
+struct StereoImages {
+  std::int64_t t_ns = 0;
+  cv::Mat left, right;
+};
+
+class EurocDataset {
+ public:
+  /// `root` is the folder that holds mav0/ (or mav0 itself). Throws InputError.
+  EurocDataset(const std::string& root, const DatasetOptions& options);
+
+  const camera::StereoRig& calibration() const { return rig_; }
+  const std::vector<StereoRecord>& stereoPairs() const { return pairs_; }
+  const std::vector<ImuSample>& imu() const { return imu_; }
+  /// Ground truth, empty when the folder has none.
+  const Trajectory& groundTruth() const { return ground_truth_; }
+  /// Warnings collected so far (opening and every loadStereo call).
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  const std::string& mav0() const { return mav0_; }
+
+  std::size_t cameraRows(int cam) const { return rows_[cam]; }
+  /// Rows whose image file is missing or failed to decode.
+  std::size_t unreadableImages(int cam) const { return unreadable_[cam]; }
+  /// Readable frames with no partner in the other camera.
+  std::size_t unpairedFrames(int cam) const { return unpaired_[cam]; }
+  double imuRateHz() const;
+  /// Time from the first to the last stereo pair [s].
+  double durationSeconds() const;
+
+  /// Decodes pair i. Returns nullopt (counted, with a warning) when an image
+  /// fails to decode; throws InputError when its size differs from the calibration.
+  std::optional<StereoImages> loadStereo(std::size_t i);
+
+ private:
+  std::vector<ImageRecord> readImageList(int cam);
+  void readImu();
+  void pairFrames(const std::vector<ImageRecord>& left, const std::vector<ImageRecord>& right);
+  std::optional<cv::Mat> loadImage(int cam, const ImageRecord& rec);
+
+  DatasetOptions options_;
+  std::string mav0_;
+  camera::StereoRig rig_;
+  std::vector<StereoRecord> pairs_;
+  std::vector<ImuSample> imu_;
+  Trajectory ground_truth_;
+  std::vector<std::string> warnings_;
+  std::size_t rows_[2] = {0, 0};
+  std::size_t unreadable_[2] = {0, 0};
+  std::size_t unpaired_[2] = {0, 0};
+};
+
+}  // namespace edgevio::io

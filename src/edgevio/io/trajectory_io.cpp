@@ -1,0 +1,115 @@
+#include "edgevio/io/trajectory_io.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "edgevio/common/error.h"
+#include "edgevio/common/table_reader.h"
+
+namespace edgevio::io {
+
+namespace {
+
+TrajectoryFormat detectFormat(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "cannot open trajectory file for reading (check the path)");
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto b = line.find_first_not_of(" \t\r");
+    if (b == std::string::npos || line[b] == '#') continue;
+    return line.find(',') != std::string::npos ? TrajectoryFormat::kEuroc : TrajectoryFormat::kTum;
+  }
+  throw InputError(path, 0, "no trajectory rows: expected TUM (t x y z qx qy qz qw) or EuRoC CSV (t_ns,px,...,qw,qx,qy,qz)");
+}
+
+Quat readUnitQuaternion(const TableReader& r, double w, double x, double y, double z) {
+  const Quat q(w, x, y, z);
+  const double n = q.norm();
+  if (std::abs(n - 1.0) > 0.01)
+    r.fail("quaternion norm is " + std::to_string(n) + ", expected 1 (check the column order: TUM is qx qy qz qw, "
+           "EuRoC is qw,qx,qy,qz)");
+  return q.normalized();
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+File openForWriting(const std::string& path) {
+  File f(std::fopen(path.c_str(), "w"));
+  if (!f) throw InputError(path, 0, "cannot open file for writing (does the folder exist?)");
+  return f;
+}
+
+}  // namespace
+
+Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected) {
+  const TrajectoryFormat format = detectFormat(path);
+  if (detected) *detected = format;
+  const bool euroc = format == TrajectoryFormat::kEuroc;
+  TableReader r(path, euroc ? TableReader::Separator::kComma : TableReader::Separator::kWhitespace);
+  Trajectory traj;
+  while (r.next()) {
+    TrajectorySample s;
+    if (euroc) {
+      r.requireFields(8, "t_ns,px,py,pz,qw,qx,qy,qz");
+      s.t_ns = r.integer(0);
+      s.T_w_b = geometry::SE3(readUnitQuaternion(r, r.number(4), r.number(5), r.number(6), r.number(7)),
+                              Vec3(r.number(1), r.number(2), r.number(3)));
+      if (r.size() >= 17) {
+        s.v_w = Vec3(r.number(8), r.number(9), r.number(10));
+        s.b_g = Vec3(r.number(11), r.number(12), r.number(13));
+        s.b_a = Vec3(r.number(14), r.number(15), r.number(16));
+      }
+    } else {
+      r.requireFields(8, "t x y z qx qy qz qw");
+      s.t_ns = r.secondsAsNanoseconds(0);
+      s.T_w_b = geometry::SE3(readUnitQuaternion(r, r.number(7), r.number(4), r.number(5), r.number(6)),
+                              Vec3(r.number(1), r.number(2), r.number(3)));
+    }
+    if (!traj.empty() && s.t_ns <= traj.back().t_ns)
+      r.fail(std::string(s.t_ns == traj.back().t_ns ? "duplicate" : "decreasing") +
+             " timestamp: rows must be in strictly increasing time order");
+    traj.push_back(s);
+  }
+  if (traj.empty()) throw InputError(path, 0, "no trajectory rows found");
+  return traj;
+}
+
+void writeTrajectoryTum(const std::string& path, const Trajectory& trajectory) {
+  File f = openForWriting(path);
+  std::fprintf(f.get(), "# timestamp[s] tx ty tz qx qy qz qw\n");
+  for (const auto& s : trajectory) {
+    const Vec3& p = s.T_w_b.translation();
+    const Quat& q = s.T_w_b.quaternion();
+    std::fprintf(f.get(), "%lld.%09lld %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n",
+                 static_cast<long long>(s.t_ns / 1000000000), static_cast<long long>(s.t_ns % 1000000000), p.x(),
+                 p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
+  }
+}
+
+void writeTrajectoryEuroc(const std::string& path, const Trajectory& trajectory) {
+  File f = openForWriting(path);
+  bool full = !trajectory.empty();
+  for (const auto& s : trajectory) full = full && s.hasVelocityAndBias();
+  std::fprintf(f.get(), "#timestamp [ns],p_RS_R_x [m],p_RS_R_y [m],p_RS_R_z [m],q_RS_w [],q_RS_x [],q_RS_y [],q_RS_z []%s\n",
+               full ? ",v_RS_R_x [m s^-1],v_RS_R_y [m s^-1],v_RS_R_z [m s^-1],b_w_RS_S_x [rad s^-1],"
+                      "b_w_RS_S_y [rad s^-1],b_w_RS_S_z [rad s^-1],b_a_RS_S_x [m s^-2],b_a_RS_S_y [m s^-2],"
+                      "b_a_RS_S_z [m s^-2]"
+                    : "");
+  for (const auto& s : trajectory) {
+    const Vec3& p = s.T_w_b.translation();
+    const Quat& q = s.T_w_b.quaternion();
+    std::fprintf(f.get(), "%lld,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f", static_cast<long long>(s.t_ns), p.x(), p.y(),
+                 p.z(), q.w(), q.x(), q.y(), q.z());
+    if (full)
+      std::fprintf(f.get(), ",%.9f,%.9f,%.9f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.v_w.x(), s.v_w.y(), s.v_w.z(),
+                   s.b_g.x(), s.b_g.y(), s.b_g.z(), s.b_a.x(), s.b_a.y(), s.b_a.z());
+    std::fprintf(f.get(), "\n");
+  }
+}
+
+}  // namespace edgevio::io

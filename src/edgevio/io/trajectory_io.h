@@ -1,0 +1,37 @@
+#pragma once
+// The one trajectory file reader and writer.
+//  TUM:   `t[s] x y z qx qy qz qw` (whitespace separated; extra columns ignored)
+//  EuRoC: `t[ns],px,py,pz,qw,qx,qy,qz[,vx,vy,vz,bwx,bwy,bwz,bax,bay,baz]`
+// The format is detected from the first data row: commas mean EuRoC.
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "edgevio/geometry/se3.h"
+
+namespace edgevio::io {
+
+struct TrajectorySample {
+  std::int64_t t_ns = 0;
+  geometry::SE3 T_w_b;
+  /// Velocity and biases, present in EuRoC ground truth; NaN when unknown.
+  Vec3 v_w = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 b_g = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vec3 b_a = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  bool hasVelocityAndBias() const { return v_w.allFinite() && b_g.allFinite() && b_a.allFinite(); }
+};
+using Trajectory = std::vector<TrajectorySample>;
+
+enum class TrajectoryFormat { kTum, kEuroc };
+
+/// Reads a trajectory; timestamps must increase strictly, quaternions be unit
+/// (to 1 %; they are normalised). Throws InputError naming file and line.
+Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected = nullptr);
+
+/// Writes TUM with nanosecond-exact timestamps (9 decimals).
+void writeTrajectoryTum(const std::string& path, const Trajectory& trajectory);
+/// Writes EuRoC CSV; velocity and bias columns when every sample has them.
+void writeTrajectoryEuroc(const std::string& path, const Trajectory& trajectory);
+
+}  // namespace edgevio::io

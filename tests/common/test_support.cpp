@@ -1,0 +1,70 @@
+#include "common/test_support.h"
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace edgevio::test {
+
+namespace fs = std::filesystem;
+
+std::string sharedDataDir() {
+  const char* env = std::getenv("EDGEVIO_DATA_DIR");
+  const std::string dir = env && *env ? env : EDGEVIO_DEFAULT_DATA_DIR;
+  return fs::is_directory(dir) ? dir : "";
+}
+
+std::string sharedDataPath(const std::string& subpath) {
+  const std::string dir = sharedDataDir();
+  if (dir.empty()) return "";
+  const fs::path p = fs::path(dir) / subpath;
+  return fs::exists(p) ? p.string() : "";
+}
+
+std::string sourceDir() { return EDGEVIO_SOURCE_DIR; }
+
+TempDir::TempDir() {
+  static std::atomic<int> counter{0};
+  path_ = (fs::temp_directory_path() /
+           ("edgevio_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++)))
+              .string();
+  fs::remove_all(path_);
+  fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+std::string TempDir::write(const std::string& name, const std::string& text) const {
+  const fs::path p = fs::path(path_) / name;
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+  return p.string();
+}
+
+Eigen::MatrixXd numericJacobian(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f,
+                                const Eigen::VectorXd& x, double h) {
+  const Eigen::VectorXd f0 = f(x);
+  Eigen::MatrixXd J(f0.size(), x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    Eigen::VectorXd xp = x, xm = x;
+    xp(i) += h;
+    xm(i) -= h;
+    J.col(i) = (f(xp) - f(xm)) / (2.0 * h);
+  }
+  return J;
+}
+
+void expectJacobianNear(const Eigen::MatrixXd& analytic, const Eigen::MatrixXd& numeric, double tol,
+                        const std::string& what) {
+  ASSERT_EQ(analytic.rows(), numeric.rows()) << what;
+  ASSERT_EQ(analytic.cols(), numeric.cols()) << what;
+  const double err = (analytic - numeric).cwiseAbs().maxCoeff();
+  EXPECT_LE(err, tol) << what << "\nanalytic:\n" << analytic << "\nnumeric:\n" << numeric;
+}
+
+}  // namespace edgevio::test

@@ -1,0 +1,46 @@
+#pragma once
+// Helpers shared by the tests: numeric Jacobians, temporary folders, the shared data folder.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+
+namespace edgevio::test {
+
+/// Folder of ../shared/data (env EDGEVIO_DATA_DIR overrides); "" when absent.
+std::string sharedDataDir();
+/// Skips the current test, naming what is missing, when the shared data is absent.
+#define EDGEVIO_REQUIRE_SHARED_DATA(subpath)                                                   \
+  const std::string data_path = ::edgevio::test::sharedDataPath(subpath);                      \
+  if (data_path.empty()) GTEST_SKIP() << "shared data not found: " << (subpath)                \
+                                      << " (set EDGEVIO_DATA_DIR to the shared/data folder)"
+std::string sharedDataPath(const std::string& subpath);
+/// The source tree (for config/euroc.yaml).
+std::string sourceDir();
+
+/// A fresh empty folder under the system temp dir, removed on destruction.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::string& path() const { return path_; }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+  /// Writes text to path()/name (creating folders) and returns the full path.
+  std::string write(const std::string& name, const std::string& text) const;
+
+ private:
+  std::string path_;
+};
+
+/// Central-difference Jacobian of f: R^n → R^m at x, step h.
+Eigen::MatrixXd numericJacobian(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f,
+                                const Eigen::VectorXd& x, double h = 1e-6);
+
+/// Expects |analytic − numeric| ≤ tol elementwise, printing both on failure.
+void expectJacobianNear(const Eigen::MatrixXd& analytic, const Eigen::MatrixXd& numeric, double tol,
+                        const std::string& what);
+
+}  // namespace edgevio::test
