@@ -5,13 +5,16 @@
 #include <iostream>
 
 #include "edgevio/cli/commands.h"
+#include "edgevio/config/config.h"
 
 int main(int argc, char** argv) {
   using namespace edgevio;
   CLI::App app{"edgevio " EDGEVIO_VERSION
                ": edge-alignment stereo visual-inertial odometry for aggressive motion"};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);
   app.set_version_flag("--version", EDGEVIO_VERSION);
+  bool print_config = false;
+  app.add_flag("--print-config", print_config, "Print the default configuration (every parameter, documented) and exit");
 
   cli::InfoArgs info;
   auto* info_cmd = app.add_subcommand("info", "Describe an EuRoC/ASL dataset folder as one JSON object");
@@ -43,11 +46,17 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
 
+  if (print_config) {
+    writeConfig(std::cout, Config{});
+    return cli::kExitOk;
+  }
+
   if (*info_cmd) return cli::info(info, std::cout, std::cerr);
   if (*eval_cmd) return cli::eval(ev, std::cout, std::cerr);
   if (*run_cmd) return cli::notImplemented("run", "the front-end issue", std::cerr);
   if (*sim_cmd) return cli::notImplemented("simulate", "the simulator issue", std::cerr);
   if (*bench_cmd) return cli::notImplemented("bench", "the pipeline issue", std::cerr);
   if (*demo_cmd) return cli::notImplemented("demo", "the pipeline issue", std::cerr);
+  std::cerr << app.help();
   return cli::kExitError;
 }

@@ -62,14 +62,49 @@ Vec2 CameraModel::undistort(const Vec2& xd) const {
   return x;
 }
 
+namespace {
+double equidistantThetaD(const std::array<double, 4>& k, double theta) {
+  const double t2 = theta * theta;
+  return theta * (1.0 + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3]))));
+}
+}  // namespace
+
 Vec2 CameraModel::project(const Vec3& p_c) const {
-  const Vec2 xd = distort(Vec2(p_c.x() / p_c.z(), p_c.y() / p_c.z()));
+  Vec2 xd;
+  if (distortion == Distortion::kEquidistant) {
+    const double r = std::hypot(p_c.x(), p_c.y());
+    if (r < 1e-12 * std::abs(p_c.z())) {
+      xd = Vec2(p_c.x() / p_c.z(), p_c.y() / p_c.z());  // on the axis θ_d/r → 1/Z
+    } else {
+      const double theta_d = equidistantThetaD(coeffs, std::atan2(r, p_c.z()));
+      xd = Vec2(p_c.x(), p_c.y()) * (theta_d / r);
+    }
+  } else {
+    xd = distort(Vec2(p_c.x() / p_c.z(), p_c.y() / p_c.z()));
+  }
   return Vec2(fx * xd.x() + cx, fy * xd.y() + cy);
 }
 
 Vec3 CameraModel::unproject(const Vec2& uv) const {
-  const Vec2 x = undistort(Vec2((uv.x() - cx) / fx, (uv.y() - cy) / fy));
-  return Vec3(x.x(), x.y(), 1.0);
+  const Vec2 xd((uv.x() - cx) / fx, (uv.y() - cy) / fy);
+  if (distortion == Distortion::kEquidistant) {
+    // Solve θ_d(θ) = |x_d| by Newton (monotonic for real lenses), then the
+    // bearing makes angle θ with the optical axis.
+    const double rd = xd.norm();
+    if (rd < 1e-12) return Vec3(0.0, 0.0, 1.0);
+    double theta = rd;
+    for (int it = 0; it < 20; ++it) {
+      const double h = 1e-7;
+      const double f = equidistantThetaD(coeffs, theta) - rd;
+      const double df = (equidistantThetaD(coeffs, theta + h) - equidistantThetaD(coeffs, theta - h)) / (2 * h);
+      if (std::abs(f) < 1e-14 || df <= 0.0) break;
+      theta -= f / df;
+    }
+    const double s = std::sin(theta) / rd;
+    return Vec3(s * xd.x(), s * xd.y(), std::cos(theta));
+  }
+  const Vec2 x = undistort(xd);
+  return Vec3(x.x(), x.y(), 1.0).normalized();
 }
 
 std::string CameraModel::validate() const {

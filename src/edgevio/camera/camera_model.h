@@ -31,9 +31,10 @@ struct CameraModel {
   Vec2 distort(const Vec2& x) const;
   /// Inverse of distort by Newton's method (converges in a few steps inside the image).
   Vec2 undistort(const Vec2& xd) const;
-  /// Camera-frame point (Z > 0) → pixel.
+  /// Camera-frame point → pixel. Radial-tangential and none need Z > 0;
+  /// equidistant uses θ = atan2(√(X²+Y²), Z) and so also covers rays beyond 90°.
   Vec2 project(const Vec3& p_c) const;
-  /// Pixel → point on the Z = 1 plane (the viewing ray).
+  /// Pixel → unit-length bearing vector of the viewing ray.
   Vec3 unproject(const Vec2& uv) const;
   bool inImage(const Vec2& uv, double border = 0.0) const {
     return uv.x() >= border && uv.y() >= border && uv.x() <= width - 1 - border && uv.y() <= height - 1 - border;

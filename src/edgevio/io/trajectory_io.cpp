@@ -70,9 +70,10 @@ Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected) {
       s.T_w_b = geometry::SE3(readUnitQuaternion(r, r.number(7), r.number(4), r.number(5), r.number(6)),
                               Vec3(r.number(1), r.number(2), r.number(3)));
     }
-    if (!traj.empty() && s.t_ns <= traj.back().t_ns)
-      r.fail(std::string(s.t_ns == traj.back().t_ns ? "duplicate" : "decreasing") +
-             " timestamp: rows must be in strictly increasing time order");
+    // Equal timestamps are accepted: real estimator outputs contain them (the
+    // evo reference estimate in shared/data does) and evo keeps them.
+    if (!traj.empty() && s.t_ns < traj.back().t_ns)
+      r.fail("decreasing timestamp: rows must be in increasing time order");
     traj.push_back(s);
   }
   if (traj.empty()) throw InputError(path, 0, "no trajectory rows found");

@@ -25,8 +25,9 @@ using Trajectory = std::vector<TrajectorySample>;
 
 enum class TrajectoryFormat { kTum, kEuroc };
 
-/// Reads a trajectory; timestamps must increase strictly, quaternions be unit
-/// (to 1 %; they are normalised). Throws InputError naming file and line.
+/// Reads a trajectory; timestamps must not decrease (equal ones are kept, as evo
+/// does), quaternions must be unit to 1 % (they are normalised). Throws
+/// InputError naming file and line.
 Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected = nullptr);
 
 /// Writes TUM with nanosecond-exact timestamps (9 decimals).
