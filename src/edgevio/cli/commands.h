@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "edgevio/eval/eval_options.h"
+
 namespace edgevio::cli {
 
 constexpr int kExitOk = 0;
@@ -29,6 +31,10 @@ struct EvalArgs {
 };
 /// `edgevio eval`: trajectory metrics (issue #3).
 int eval(const EvalArgs& args, std::ostream& out, std::ostream& err);
+
+/// `edgevio eval --results DIR`: evaluates every run folder, writes DIR/report.md
+/// and DIR/report.csv, prints the markdown table.
+int evalResults(const std::string& dir, const eval::EvalOptions& options, std::ostream& out, std::ostream& err);
 
 /// Prints "<name>: not implemented yet (...)" and returns kExitNotImplemented.
 int notImplemented(const std::string& name, const std::string& issue, std::ostream& err);

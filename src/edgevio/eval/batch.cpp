@@ -1,0 +1,175 @@
+#include "edgevio/eval/batch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <ostream>
+#include <set>
+
+#include "edgevio/common/error.h"
+#include "edgevio/common/yaml_file.h"
+
+namespace edgevio::eval {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string scalarOr(const YAML::Node& root, const char* key, const std::string& fallback) {
+  const YAML::Node n = root[key];
+  return n && n.IsScalar() ? n.Scalar() : fallback;
+}
+
+std::string findGroundTruth(const fs::path& run, const YAML::Node& summary) {
+  const std::string gt = scalarOr(summary, "groundtruth", "");
+  if (!gt.empty()) {
+    const fs::path p = fs::path(gt).is_absolute() ? fs::path(gt) : run / gt;
+    return p.string();
+  }
+  const std::string dataset = scalarOr(summary, "dataset", "");
+  if (!dataset.empty()) {
+    fs::path d = fs::path(dataset).is_absolute() ? fs::path(dataset) : run / dataset;
+    if (fs::is_directory(d / "mav0")) d /= "mav0";
+    return (d / "state_groundtruth_estimate0" / "data.csv").string();
+  }
+  for (const char* name : {"groundtruth.csv", "groundtruth_tum.txt", "groundtruth.txt"})
+    if (fs::exists(run / name)) return (run / name).string();
+  return "";
+}
+
+RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOptions& options) {
+  RunEvaluation r;
+  r.folder = fs::relative(run, dir).string();
+  if (r.folder == ".") r.folder = run.filename().string();
+  r.sequence = r.folder;
+  r.mode = "-";
+  r.realtime_factor = kNaN;
+  YAML::Node summary(YAML::NodeType::Map);
+  try {
+    if (fs::exists(run / "summary.json")) summary = loadYamlFile((run / "summary.json").string());
+    r.sequence = scalarOr(summary, "sequence", r.sequence);
+    r.mode = scalarOr(summary, "mode", r.mode);
+    double rtf = 0.0;
+    if (summary["realtime_factor"] && summary["realtime_factor"].IsScalar() &&
+        std::sscanf(summary["realtime_factor"].Scalar().c_str(), "%lf", &rtf) == 1)
+      r.realtime_factor = rtf;
+    if (scalarOr(summary, "failed", "false") == "true") {
+      r.failure = "run reported failure (summary.json: failed = true)";
+      return r;
+    }
+    const fs::path est = run / "trajectory_tum.txt";
+    if (!fs::exists(est)) {
+      r.failure = "no trajectory_tum.txt";
+      return r;
+    }
+    const std::string gt = findGroundTruth(run, summary);
+    if (gt.empty()) {
+      r.failure = "no ground truth found (summary.json groundtruth/dataset, or groundtruth.csv in the folder)";
+      return r;
+    }
+    r.result = evaluate(io::readTrajectory(gt), io::readTrajectory(est.string()), options);
+    r.ok = true;
+  } catch (const InputError& e) {
+    r.failure = e.what();
+  }
+  return r;
+}
+
+std::string num(double v, int decimals) {
+  if (!std::isfinite(v)) return "-";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string r = "\"";
+  for (char c : s) r += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+  return r + "\"";
+}
+
+}  // namespace
+
+std::vector<RunEvaluation> evaluateRunFolders(const std::string& dir, const EvalOptions& options) {
+  if (!fs::is_directory(dir)) throw InputError(dir, 0, "results folder not found");
+  std::set<fs::path> runs;
+  for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied);
+       it != fs::recursive_directory_iterator(); ++it) {
+    const std::string name = it->path().filename().string();
+    if (it->is_regular_file() && (name == "summary.json" || name == "trajectory_tum.txt"))
+      runs.insert(it->path().parent_path());
+  }
+  std::vector<RunEvaluation> out;
+  for (const auto& run : runs) out.push_back(evaluateRun(dir, run, options));
+  std::sort(out.begin(), out.end(), [](const RunEvaluation& a, const RunEvaluation& b) {
+    return std::tie(a.sequence, a.mode, a.folder) < std::tie(b.sequence, b.mode, b.folder);
+  });
+  return out;
+}
+
+void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& runs, const EvalOptions& options) {
+  std::size_t failures = 0;
+  for (const auto& r : runs) failures += !r.ok;
+  out << "# edgevio evaluation report\n\n"
+      << runs.size() << " runs, " << failures << " failed. ATE after " << options.alignment
+      << " alignment; ARE over segments of ";
+  if (options.are_segments_m.empty()) {
+    for (std::size_t i = 0; i < options.are_segments_percent.size(); ++i)
+      out << (i ? ", " : "") << options.are_segments_percent[i] << " %";
+    out << " of each trajectory's length";
+  } else {
+    for (std::size_t i = 0; i < options.are_segments_m.size(); ++i) out << (i ? ", " : "") << options.are_segments_m[i] << " m";
+  }
+  out << ".\n\n| sequence | mode | status | matched | ATE RMSE [m] | ARE-rot [deg/m] | ARE-trans [m/m] |";
+  for (double d : options.rpe_deltas_m) out << " RPE " << d << " m [m] |";
+  out << " length [m] | RT factor |\n|---|---|---|---:|---:|---:|---:|";
+  for (std::size_t i = 0; i < options.rpe_deltas_m.size(); ++i) out << "---:|";
+  out << "---:|---:|\n";
+  for (const auto& r : runs) {
+    out << "| " << r.sequence << " | " << r.mode << " | ";
+    if (!r.ok) {
+      out << "**FAILED**: " << r.failure << " | - | - | - | - |";
+      for (std::size_t i = 0; i < options.rpe_deltas_m.size(); ++i) out << " - |";
+      out << " - | " << num(r.realtime_factor, 1) << " |\n";
+      continue;
+    }
+    out << "ok | " << r.result.matched << " | " << num(r.result.ate_rmse_m, 4) << " | "
+        << num(r.result.are_rot_deg_per_m, 5) << " | " << num(r.result.are_trans_m_per_m, 5) << " |";
+    for (const auto& e : r.result.rpe) out << " " << num(e.trans_rmse_m, 4) << " |";
+    out << " " << num(r.result.length_m, 1) << " | " << num(r.realtime_factor, 1) << " |\n";
+  }
+}
+
+void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
+  out << "sequence,mode,folder,status,failure,matched,align,ate_rmse_m,ate_mean_m,ate_median_m,ate_max_m,"
+         "are_rot_deg_per_m,are_trans_m_per_m,rpe_deltas_m,rpe_trans_rmse_m,rpe_rot_rmse_deg,length_m,duration_s,"
+         "realtime_factor\n";
+  for (const auto& r : runs) {
+    out << csvField(r.sequence) << "," << csvField(r.mode) << "," << csvField(r.folder) << ","
+        << (r.ok ? "ok" : "failed") << "," << csvField(r.failure) << ",";
+    if (r.ok) {
+      const EvalResult& e = r.result;
+      std::string deltas, trans, rot;
+      for (std::size_t i = 0; i < e.rpe.size(); ++i) {
+        const std::string sep = i ? ";" : "";
+        deltas += sep + num(e.rpe[i].delta_m, 3);
+        trans += sep + num(e.rpe[i].trans_rmse_m, 6);
+        rot += sep + num(e.rpe[i].rot_rmse_deg, 6);
+      }
+      out << e.matched << "," << alignmentName(e.alignment) << "," << num(e.ate_rmse_m, 6) << ","
+          << num(e.ate_mean_m, 6) << "," << num(e.ate_median_m, 6) << "," << num(e.ate_max_m, 6) << ","
+          << num(e.are_rot_deg_per_m, 6) << "," << num(e.are_trans_m_per_m, 6) << "," << deltas << "," << trans
+          << "," << rot << "," << num(e.length_m, 3) << "," << num(e.duration_s, 3) << ",";
+    } else {
+      out << ",,,,,,,,,,,,,";
+    }
+    out << (std::isfinite(r.realtime_factor) ? num(r.realtime_factor, 2) : "") << "\n";
+  }
+}
+
+}  // namespace edgevio::eval

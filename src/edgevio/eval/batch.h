@@ -1,0 +1,38 @@
+#pragma once
+// Batch evaluation of run folders (`edgevio eval --results DIR`).
+//
+// A run folder is any folder under DIR holding `summary.json` or
+// `trajectory_tum.txt` (what `edgevio run --out` writes). Its ground truth is,
+// in this order: summary.json's "groundtruth" (a file, relative to the run
+// folder or absolute); summary.json's "dataset" (an ASL folder, whose
+// mav0/state_groundtruth_estimate0/data.csv is used); or a file named
+// groundtruth.csv, groundtruth_tum.txt or groundtruth.txt in the run folder.
+// The row's sequence is summary.json's "sequence" (else the folder's path under
+// DIR) and its mode is summary.json's "mode". A run whose summary says
+// "failed": true, whose trajectory is missing, or that cannot be evaluated is a
+// failure row with the reason: never dropped.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "edgevio/eval/metrics.h"
+
+namespace edgevio::eval {
+
+struct RunEvaluation {
+  std::string folder;    ///< relative to DIR
+  std::string sequence;
+  std::string mode;
+  bool ok = false;
+  std::string failure;   ///< why, when !ok
+  EvalResult result;
+  double realtime_factor = 0.0;  ///< from summary.json when present, else NaN
+};
+
+/// Finds and evaluates every run folder under `dir`, sorted by sequence, mode, folder.
+std::vector<RunEvaluation> evaluateRunFolders(const std::string& dir, const EvalOptions& options);
+
+void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& runs, const EvalOptions& options);
+void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs);
+
+}  // namespace edgevio::eval

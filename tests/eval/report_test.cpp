@@ -1,0 +1,132 @@
+// Reports, plots and batch evaluation of run folders.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/test_support.h"
+#include "edgevio/cli/commands.h"
+#include "edgevio/eval/batch.h"
+#include "edgevio/eval/report.h"
+#include "edgevio/eval/svg_plot.h"
+
+namespace edgevio::eval {
+namespace {
+
+using geometry::SE3;
+using geometry::SO3;
+using test::TempDir;
+
+io::Trajectory circle(double offset_m) {
+  io::Trajectory t;
+  for (int i = 0; i < 400; ++i) {
+    io::TrajectorySample s;
+    s.t_ns = 5000000000LL + i * 50000000LL;
+    const double a = i * 0.02;
+    s.T_w_b = SE3(SO3::exp(Vec3(0, 0, a)), Vec3(2 * std::cos(a) + offset_m * std::sin(7 * a), 2 * std::sin(a), 1));
+    t.push_back(s);
+  }
+  return t;
+}
+
+std::string readFile(const std::string& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+TEST(Report, JsonHasTheDocumentedKeys) {
+  const EvalResult r = evaluate(circle(0), circle(0.05), EvalOptions{});
+  std::ostringstream o;
+  writeJson(o, r);
+  for (const char* key : {"\"matched\"", "\"align\"", "\"ate_rmse_m\"", "\"ate_mean_m\"", "\"ate_median_m\"",
+                          "\"ate_max_m\"", "\"rpe\"", "\"delta_m\"", "\"trans_rmse_m\"", "\"rot_rmse_deg\"",
+                          "\"are_rot_deg_per_m\"", "\"are_trans_m_per_m\"", "\"length_m\"", "\"duration_s\""})
+    EXPECT_NE(o.str().find(key), std::string::npos) << key;
+  std::ostringstream t;
+  writeTable(t, r);
+  EXPECT_NE(t.str().find("ATE RMSE"), std::string::npos);
+}
+
+TEST(Report, SvgPlotIsReadable) {
+  const EvalResult r = evaluate(circle(0), circle(0.05), EvalOptions{});
+  const std::string svg = svgPlot(r, "circle <test>");
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  for (const char* text : {"x [m]", "y [m]", "ATE [m]", "ground truth", "estimate (aligned)", "circle &lt;test&gt;"})
+    EXPECT_NE(svg.find(text), std::string::npos) << text;
+  // Two data polylines in the top view plus the ATE curve.
+  std::size_t count = 0;
+  for (std::size_t p = svg.find("<polyline"); p != std::string::npos; p = svg.find("<polyline", p + 1)) ++count;
+  EXPECT_EQ(count, 3u);
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
+}
+
+TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
+  TempDir dir;
+  io::writeTrajectoryEuroc(dir.file("gt.csv"), circle(0));
+  // ok run: ground truth named in summary.json
+  for (const char* sub : {"seqA/edge+imu", "seqB", "seqC"}) std::filesystem::create_directories(dir.file(sub));
+  io::writeTrajectoryTum(dir.file("seqA/edge+imu/trajectory_tum.txt"), circle(0.02));
+  dir.write("seqA/edge+imu/summary.json",
+            "{\"mode\": \"edge+imu\", \"sequence\": \"seqA\", \"failed\": false, \"groundtruth\": \"../../gt.csv\", "
+            "\"realtime_factor\": 7.5}");
+  // failed run
+  dir.write("seqA/edge-only/summary.json", "{\"mode\": \"edge-only\", \"sequence\": \"seqA\", \"failed\": true}");
+  // run without ground truth
+  io::writeTrajectoryTum(dir.file("seqB/trajectory_tum.txt"), circle(0));
+  // run whose estimate has no overlap with its ground truth
+  io::Trajectory late = circle(0);
+  for (auto& s : late) s.t_ns += 1000000000000LL;
+  io::writeTrajectoryTum(dir.file("seqC/trajectory_tum.txt"), late);
+  io::writeTrajectoryEuroc(dir.file("seqC/groundtruth.csv"), circle(0));
+
+  const auto runs = evaluateRunFolders(dir.path(), EvalOptions{});
+  ASSERT_EQ(runs.size(), 4u);
+  std::size_t ok = 0;
+  for (const auto& r : runs) ok += r.ok;
+  EXPECT_EQ(ok, 1u);
+  std::ostringstream out, err;
+  ASSERT_EQ(cli::evalResults(dir.path(), EvalOptions{}, out, err), cli::kExitOk) << err.str();
+  const std::string md = readFile(dir.file("report.md")), csv = readFile(dir.file("report.csv"));
+  EXPECT_NE(md.find("4 runs, 3 failed"), std::string::npos) << md;
+  EXPECT_NE(md.find("| seqA | edge+imu | ok |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| seqA | edge-only | **FAILED**"), std::string::npos) << md;
+  EXPECT_NE(md.find("no ground truth"), std::string::npos) << md;
+  EXPECT_NE(md.find("no timestamp overlap"), std::string::npos) << md;
+  EXPECT_NE(csv.find("seqA,edge+imu,seqA/edge+imu,ok,,400,se3,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",7.50\n"), std::string::npos) << csv;
+}
+
+TEST(EvalCommand, SegmentsAndErrors) {
+  TempDir dir;
+  io::writeTrajectoryTum(dir.file("gt.txt"), circle(0));
+  io::writeTrajectoryTum(dir.file("est.txt"), circle(0.03));
+  cli::EvalArgs a;
+  a.gt = dir.file("gt.txt");
+  a.est = dir.file("est.txt");
+  a.format = "json";
+  a.segments = "2m,4m";
+  a.plot = dir.file("plot.svg");
+  std::ostringstream out, err;
+  ASSERT_EQ(cli::eval(a, out, err), cli::kExitOk) << err.str();
+  EXPECT_NE(out.str().find("\"are_lengths_m\": [\n    2,\n    4\n  ]"), std::string::npos) << out.str();
+  EXPECT_NE(readFile(a.plot).find("</svg>"), std::string::npos);
+
+  for (const std::string bad : {"10", "5km", "10%,2m", "%"}) {
+    a.segments = bad;
+    std::ostringstream o2, e2;
+    EXPECT_EQ(cli::eval(a, o2, e2), cli::kExitError) << bad;
+    EXPECT_NE(e2.str().find("--segments"), std::string::npos) << e2.str();
+  }
+  a.segments = "";
+  a.est = dir.write("garbage.txt", "hello world\n");
+  std::ostringstream o3, e3;
+  EXPECT_EQ(cli::eval(a, o3, e3), cli::kExitError);
+  EXPECT_NE(e3.str().find("garbage.txt:1"), std::string::npos) << e3.str();
+}
+
+}  // namespace
+}  // namespace edgevio::eval
