@@ -37,8 +37,27 @@ int main(int argc, char** argv) {
   eval_cmd->add_option("--plot", ev.plot, "Write an SVG plot (top view and ATE over time)");
   eval_cmd->add_option("--config", ev.config, "Config file (YAML)");
 
+  cli::SimulateArgs sim;
   auto* sim_cmd = app.add_subcommand("simulate", "Render a synthetic stereo+IMU sequence as an EuRoC ASL folder");
-  sim_cmd->allow_extras();
+  sim_cmd->add_option("--out", sim.out, "Output folder (mav0/ is written inside)")->required();
+  auto* traj_opt = sim_cmd->add_option("--trajectory", sim.trajectory, "Trajectory to follow (TUM or EuRoC ground truth)");
+  auto* scen_opt = sim_cmd->add_option("--scenario", sim.scenario, "Built-in motion")
+                       ->check(CLI::IsMember({"hover", "figure8", "aggressive", "throw"}));
+  traj_opt->excludes(scen_opt);
+  sim_cmd->add_option("--start", sim.start_s, "Start, seconds after the trajectory's first pose");
+  sim_cmd->add_option("--duration", sim.duration_s, "Length in seconds (default: whole file, or sim.scenario_duration_s)");
+  sim_cmd->add_option("--seed", sim.seed, "Seed of everything random (scene, noise, drops)");
+  sim_cmd->add_option("--imu", sim.imu, "synth (from the trajectory) or a real imu0 data.csv to replay");
+  sim_cmd->add_option("--noise", sim.noise, "on|off: IMU noise and biases, image sensor noise")
+      ->check(CLI::IsMember({"on", "off"}));
+  sim_cmd->add_option("--blur-ms", sim.blur_ms, "Exposure time for motion blur in ms (0: none)");
+  sim_cmd->add_flag("--exposure-changes", sim.exposure_changes, "Auto-exposure drift and sudden lighting changes");
+  sim_cmd->add_option("--drop-rate", sim.drop_rate, "Probability that a cam1 frame is dropped");
+  sim_cmd->add_option("--skip", sim.skip, "Keep every (K+1)-th frame");
+  sim_cmd->add_option("--calib", sim.calib, "Calibration: ASL folder or Kalibr camchain YAML (default: EuRoC)");
+  sim_cmd->add_option("--vignetting", sim.vignetting, "Vignetting strength k (default: config sim.vignetting)");
+  sim_cmd->add_option("--stereo-mismatch", sim.stereo_mismatch, "Right/left gain mismatch (default: config)");
+  sim_cmd->add_option("--config", sim.config, "Config file (YAML)");
   auto* bench_cmd = app.add_subcommand("bench", "Run a benchmark matrix of sequences x modes x skips");
   bench_cmd->allow_extras();
   auto* demo_cmd = app.add_subcommand("demo", "Simulate, estimate and evaluate a default sequence");
@@ -54,7 +73,7 @@ int main(int argc, char** argv) {
   if (*info_cmd) return cli::info(info, std::cout, std::cerr);
   if (*eval_cmd) return cli::eval(ev, std::cout, std::cerr);
   if (*run_cmd) return cli::notImplemented("run", "the front-end issue", std::cerr);
-  if (*sim_cmd) return cli::notImplemented("simulate", "the simulator issue", std::cerr);
+  if (*sim_cmd) return cli::simulate(sim, std::cout, std::cerr);
   if (*bench_cmd) return cli::notImplemented("bench", "the pipeline issue", std::cerr);
   if (*demo_cmd) return cli::notImplemented("demo", "the pipeline issue", std::cerr);
   std::cerr << app.help();

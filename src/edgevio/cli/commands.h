@@ -32,6 +32,20 @@ struct EvalArgs {
 /// `edgevio eval`: trajectory metrics (issue #3).
 int eval(const EvalArgs& args, std::ostream& out, std::ostream& err);
 
+struct SimulateArgs {
+  std::string out, trajectory, scenario, imu = "synth", noise = "on", calib, config;
+  double start_s = 0.0;
+  double duration_s = -1.0;  ///< < 0: default
+  unsigned long long seed = 1;
+  double blur_ms = 0.0;
+  bool exposure_changes = false;
+  double drop_rate = 0.0;
+  int skip = 0;
+  double vignetting = -1.0, stereo_mismatch = -1.0;  ///< < 0: from config
+};
+/// `edgevio simulate`: a synthetic EuRoC ASL folder (issue #4).
+int simulate(const SimulateArgs& args, std::ostream& out, std::ostream& err);
+
 /// `edgevio eval --results DIR`: evaluates every run folder, writes DIR/report.md
 /// and DIR/report.csv, prints the markdown table.
 int evalResults(const std::string& dir, const eval::EvalOptions& options, std::ostream& out, std::ostream& err);

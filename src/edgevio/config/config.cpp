@@ -26,13 +26,13 @@ std::string shortestDouble(double v) {
 }
 
 std::string typeName(double) { return "a number"; }
-[[maybe_unused]] std::string typeName(int) { return "an integer"; }
+std::string typeName(int) { return "an integer"; }
 [[maybe_unused]] std::string typeName(bool) { return "true or false"; }
 std::string typeName(const std::string&) { return "a string"; }
 std::string typeName(const std::vector<double>&) { return "a list of numbers"; }
 
 bool parseValue(const YAML::Node& n, double* out) { return n.IsScalar() && parseFiniteDouble(n.Scalar(), out); }
-[[maybe_unused]] bool parseValue(const YAML::Node& n, int* out) {
+bool parseValue(const YAML::Node& n, int* out) {
   double v = 0.0;
   if (!parseValue(n, &v) || v != std::floor(v) || std::abs(v) > 2e9) return false;
   *out = static_cast<int>(v);
@@ -64,7 +64,7 @@ bool parseValue(const YAML::Node& n, std::vector<double>* out) {
 }
 
 std::string formatValue(double v) { return shortestDouble(v); }
-[[maybe_unused]] std::string formatValue(int v) { return std::to_string(v); }
+std::string formatValue(int v) { return std::to_string(v); }
 [[maybe_unused]] std::string formatValue(bool v) { return v ? "true" : "false"; }
 std::string formatValue(const std::string& v) { return "\"" + v + "\""; }
 std::string formatValue(const std::vector<double>& v) {

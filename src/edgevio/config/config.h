@@ -11,6 +11,7 @@
 #include "edgevio/camera/rectification_options.h"
 #include "edgevio/eval/eval_options.h"
 #include "edgevio/io/dataset_options.h"
+#include "edgevio/sim/sim_options.h"
 
 namespace edgevio {
 
@@ -18,12 +19,14 @@ struct Config {
   io::DatasetOptions dataset;
   camera::RectificationOptions rectification;
   eval::EvalOptions eval;
+  sim::SimOptions sim;
 
   template <class Visitor>
   void visitSections(Visitor& v) {
     v("dataset", dataset, "EuRoC/ASL dataset input (METHOD.md §1 driver)");
     v("rectification", rectification, "stereo rectification (METHOD.md §3 pre-processing)");
     v("eval", eval, "trajectory evaluation: association, alignment, metrics (METHOD.md §8)");
+    v("sim", sim, "simulator: motion, scene, camera effects, IMU (edgevio simulate)");
   }
   /// Empty when every section is valid, else the first problem, prefixed by its section.
   std::string validate() const;

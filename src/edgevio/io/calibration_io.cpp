@@ -1,6 +1,8 @@
 #include "edgevio/io/calibration_io.h"
 
 #include <filesystem>
+#include <fstream>
+#include <iomanip>
 
 #include "edgevio/common/error.h"
 #include "edgevio/common/yaml_file.h"
@@ -93,6 +95,66 @@ StereoRig loadKalibrCalibration(const std::string& camchain_yaml, const std::str
     rig.imu.rate_hz = yamlDouble(imu, "update_rate", imu_yaml);
   }
   return rig;
+}
+
+void writeEurocCalibration(const std::string& mav0_dir, const StereoRig& rig) {
+  for (int i = 0; i < 2; ++i) {
+    const fs::path dir = fs::path(mav0_dir) / ("cam" + std::to_string(i));
+    fs::create_directories(dir);
+    std::ofstream f(dir / "sensor.yaml");
+    if (!f) throw InputError((dir / "sensor.yaml").string(), 0, "cannot write calibration file");
+    const CameraModel& c = rig.cam[i];
+    const Mat4 T = rig.T_b_c[i].matrix();
+    f << std::setprecision(17) << "%YAML:1.0\n# General sensor definitions.\nsensor_type: camera\ncomment: edgevio cam" << i
+      << "\n\n# Sensor extrinsics wrt. the body-frame.\nT_BS:\n  cols: 4\n  rows: 4\n  data: [";
+    for (int k = 0; k < 16; ++k) f << T(k / 4, k % 4) << (k < 15 ? (k % 4 == 3 ? ",\n         " : ", ") : "]\n");
+    f << "\n# Camera specific definitions.\nrate_hz: " << rig.camera_rate_hz << "\nresolution: [" << c.width << ", "
+      << c.height << "]\ncamera_model: pinhole\nintrinsics: [" << c.fx << ", " << c.fy << ", " << c.cx << ", " << c.cy
+      << "] #fu, fv, cu, cv\ndistortion_model: " << camera::distortionName(c.distortion)
+      << "\ndistortion_coefficients: [" << c.coeffs[0] << ", " << c.coeffs[1] << ", " << c.coeffs[2] << ", "
+      << c.coeffs[3] << "]\n";
+  }
+  const fs::path dir = fs::path(mav0_dir) / "imu0";
+  fs::create_directories(dir);
+  std::ofstream f(dir / "sensor.yaml");
+  if (!f) throw InputError((dir / "sensor.yaml").string(), 0, "cannot write calibration file");
+  f << std::setprecision(17) << "%YAML:1.0\nsensor_type: imu\ncomment: edgevio IMU\n\nT_BS:\n  cols: 4\n  rows: 4\n"
+    << "  data: [1.0, 0.0, 0.0, 0.0,\n         0.0, 1.0, 0.0, 0.0,\n         0.0, 0.0, 1.0, 0.0,\n         0.0, 0.0, 0.0, 1.0]\n"
+    << "rate_hz: " << rig.imu.rate_hz << "\n\n"
+    << "gyroscope_noise_density: " << rig.imu.gyro_noise_density << "     # [ rad / s / sqrt(Hz) ]\n"
+    << "gyroscope_random_walk: " << rig.imu.gyro_random_walk << "       # [ rad / s^2 / sqrt(Hz) ]\n"
+    << "accelerometer_noise_density: " << rig.imu.accel_noise_density << "  # [ m / s^2 / sqrt(Hz) ]\n"
+    << "accelerometer_random_walk: " << rig.imu.accel_random_walk << "    # [ m / s^3 / sqrt(Hz) ]\n";
+}
+
+StereoRig eurocDefaultRig() {
+  StereoRig rig;
+  const double T0[16] = {0.0148655429818, -0.999880929698, 0.00414029679422, -0.0216401454975,
+                         0.999557249008,  0.0149672133247, 0.025715529948,   -0.064676986768,
+                         -0.0257744366974, 0.00375618835797, 0.999660727178, 0.00981073058949,
+                         0.0, 0.0, 0.0, 1.0};
+  const double T1[16] = {0.0125552670891, -0.999755099723, 0.0182237714554, -0.0198435579556,
+                         0.999598781151,  0.0130119051815, 0.0251588363115, 0.0453689425024,
+                         -0.0253898008918, 0.0179005838253, 0.999517347078, 0.00786212447038,
+                         0.0, 0.0, 0.0, 1.0};
+  rig.T_b_c[0] = geometry::SE3::fromMatrix(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(T0));
+  rig.T_b_c[1] = geometry::SE3::fromMatrix(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(T1));
+  const double intr[2][4] = {{458.654, 457.296, 367.215, 248.375}, {457.587, 456.134, 379.999, 255.238}};
+  const std::array<double, 4> dist[2] = {{-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05},
+                                         {-0.28368365, 0.07451284, -0.00010473, -3.55590700e-05}};
+  for (int i = 0; i < 2; ++i) {
+    CameraModel& c = rig.cam[i];
+    c.width = 752;
+    c.height = 480;
+    c.fx = intr[i][0];
+    c.fy = intr[i][1];
+    c.cx = intr[i][2];
+    c.cy = intr[i][3];
+    c.distortion = camera::Distortion::kRadialTangential;
+    c.coeffs = dist[i];
+  }
+  rig.camera_rate_hz = 20.0;
+  return rig;  // ImuNoise defaults are the EuRoC ADIS16448 densities
 }
 
 StereoRig loadCalibration(const std::string& path) {

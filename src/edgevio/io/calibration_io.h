@@ -17,6 +17,12 @@ camera::StereoRig loadKalibrCalibration(const std::string& camchain_yaml, const 
 /// (with an imu.yaml next to it when there is one).
 camera::StereoRig loadCalibration(const std::string& path);
 
+/// Writes mav0/{cam0,cam1,imu0}/sensor.yaml in the EuRoC format (folders are created).
+void writeEurocCalibration(const std::string& mav0_dir, const camera::StereoRig& rig);
+
+/// The EuRoC MAV rig (V1_01 calibration), the simulator's default.
+camera::StereoRig eurocDefaultRig();
+
 /// Reads one EuRoC camera sensor.yaml.
 void loadEurocCamera(const std::string& path, camera::CameraModel* model, geometry::SE3* T_b_c, double* rate_hz);
 

@@ -9,18 +9,11 @@
 #include "edgevio/common/error.h"
 #include "edgevio/common/table_reader.h"
 #include "edgevio/io/calibration_io.h"
+#include "edgevio/io/imu_io.h"
 
 namespace edgevio::io {
 
 namespace fs = std::filesystem;
-
-namespace {
-std::string formatSeconds(std::int64_t t_ns) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(t_ns) * 1e-9);
-  return buf;
-}
-}  // namespace
 
 EurocDataset::EurocDataset(const std::string& root, const DatasetOptions& options) : options_(options) {
   const fs::path r(root);
@@ -95,27 +88,7 @@ void EurocDataset::pairFrames(const std::vector<ImageRecord>& left, const std::v
 }
 
 void EurocDataset::readImu() {
-  TableReader r((fs::path(mav0_) / "imu0" / "data.csv").string(), TableReader::Separator::kComma);
-  const auto gap_ns = static_cast<std::int64_t>(std::llround(options_.imu_gap_warning_s * 1e9));
-  while (r.next()) {
-    r.requireFields(7, "timestamp [ns],w_x,w_y,w_z,a_x,a_y,a_z");
-    ImuSample s;
-    s.t_ns = r.integer(0);
-    s.gyro = Vec3(r.number(1), r.number(2), r.number(3));
-    s.accel = Vec3(r.number(4), r.number(5), r.number(6));
-    if (!imu_.empty()) {
-      const std::int64_t dt = s.t_ns - imu_.back().t_ns;
-      if (dt <= 0)
-        r.fail(std::string(dt == 0 ? "duplicate" : "decreasing") +
-               " timestamp: IMU rows must be in strictly increasing time order");
-      if (dt > gap_ns)
-        warnings_.push_back(r.path() + ":" + std::to_string(r.line()) + ": IMU gap of " +
-                            std::to_string(static_cast<double>(dt) * 1e-9) + " s before t = " + formatSeconds(s.t_ns) +
-                            " s");
-    }
-    imu_.push_back(s);
-  }
-  if (imu_.size() < 2) throw InputError(r.path(), 0, "fewer than 2 IMU samples");
+  imu_ = readImuCsv((fs::path(mav0_) / "imu0" / "data.csv").string(), options_.imu_gap_warning_s, &warnings_);
 }
 
 double EurocDataset::imuRateHz() const {

@@ -1,0 +1,81 @@
+#pragma once
+// The simulated world (issue #4): an indoor room (floor, walls, ceiling) sized
+// from the trajectory's bounding box, axis-aligned obstacles (boxes, panels,
+// pillars) kept at least `obstacle_clearance_m` from the path, procedural
+// textures on every face, and a few point lights under the ceiling.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "edgevio/geometry/types.h"
+#include "edgevio/sim/texture.h"
+
+namespace edgevio::sim {
+
+struct SceneOptions {
+  double room_margin_m = 2.5;          ///< free space between the path's bounding box and the walls [m]
+  double floor_below_path_m = 1.0;     ///< floor this far below the lowest point of the path [m]
+  double ceiling_above_path_m = 1.2;   ///< ceiling this far above the highest point [m]
+  double min_room_size_m = 7.0;        ///< smallest horizontal room dimension [m]
+  double max_room_size_m = 80.0;       ///< larger paths are rejected (texture detail would be lost) [m]
+  int obstacle_count = 10;             ///< obstacles to place (fewer if they do not fit) [-]
+  double obstacle_clearance_m = 1.0;   ///< minimum distance between an obstacle and the path [m]
+  int texture_log2_size = 10;          ///< textures have 2^n texels square [-]
+  double texture_tile_m = 4.0;         ///< a texture tile covers this many metres [m]
+  std::string texture_dir;             ///< optional folder of PNG/JPG images used as wall textures
+};
+
+/// A material: which texture, its brightness and where the tile starts on the face.
+struct SurfaceMaterial {
+  int texture = 0;
+  float albedo = 1.0f;
+  float u_offset = 0.0f, v_offset = 0.0f;
+};
+
+/// Irradiance baked on a face at a fixed cell size (lighting is static, so it
+/// is computed once per scene instead of per pixel), sampled bilinearly.
+struct LightMap {
+  float u0 = 0.0f, v0 = 0.0f, inv_cell = 10.0f;  ///< face coordinates of cell (0,0) [m], 1/cell size [1/m]
+  int nu = 1, nv = 1;
+  std::vector<float> value;
+  float sample(float u, float v) const;
+};
+
+/// Axis-aligned box; face f = 2·axis + (0: low side, 1: high side).
+struct SceneBox {
+  Eigen::Vector3f lo, hi;
+  std::array<int, 6> material{};
+  std::array<LightMap, 6> light;
+};
+
+struct PointLight {
+  Eigen::Vector3f position;
+  float intensity = 1.0f;
+};
+
+struct Scene {
+  SceneBox room;                   ///< seen from inside
+  std::vector<SceneBox> obstacles;  ///< seen from outside
+  std::vector<Texture> textures;
+  std::vector<SurfaceMaterial> materials;
+  std::vector<PointLight> lights;
+  float ambient = 0.35f;
+};
+
+/// Builds a scene around the path (positions sampled along it). Deterministic
+/// from `seed`. Throws InputError when the path is too large for a room.
+Scene buildScene(const std::vector<Vec3>& path, const SceneOptions& options, std::uint64_t seed);
+
+/// Face coordinates [m] of a point on a face with the given axis: the two other
+/// world coordinates, in increasing axis order.
+inline void faceCoordinates(int axis, const Eigen::Vector3f& x, float* u, float* v) {
+  *u = axis == 0 ? x.y() : x.x();
+  *v = axis == 2 ? x.y() : x.z();
+}
+
+/// Distance from a point to an axis-aligned box (0 inside).
+double distanceToBox(const SceneBox& box, const Vec3& p);
+
+}  // namespace edgevio::sim

@@ -1,0 +1,155 @@
+#include "edgevio/sim/trajectory_source.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "edgevio/common/error.h"
+
+namespace edgevio::sim {
+
+using geometry::SE3;
+using geometry::SO3;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kGravity = 9.81;
+
+/// 0 → 1 with zero first and second derivatives at both ends (quintic smoothstep).
+double smootherstep(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * x * (x * (6.0 * x - 15.0) + 10.0);
+}
+
+/// Camera orientation in the world from yaw (about z), pitch (nose up) and roll
+/// (about the viewing direction): camera z forward, x right, y down.
+SO3 cameraOrientation(double yaw, double pitch, double roll) {
+  const Vec3 f(std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch));
+  const Vec3 right0 = f.cross(Vec3::UnitZ()).normalized();  // level right
+  const Vec3 down0 = f.cross(right0);
+  const Vec3 right = std::cos(roll) * right0 + std::sin(roll) * down0;
+  const Vec3 down = f.cross(right);
+  Mat3 R;
+  R.col(0) = right;
+  R.col(1) = down;
+  R.col(2) = f;
+  return SO3::fromMatrix(R);
+}
+
+struct Motion {
+  Vec3 p;
+  double yaw, pitch, roll;
+};
+
+Motion scenarioMotion(const std::string& name, double tau) {
+  // tau: time since the end of the static start; e ramps the motion in over 2 s.
+  const double e = smootherstep(tau / 2.0);
+  const Vec3 centre(0.0, 0.0, 1.5);
+  if (name == "hover") {
+    return {centre + e * Vec3(0.15 * std::sin(0.5 * tau), 0.1 * std::sin(0.7 * tau), 0.05 * std::sin(0.9 * tau)),
+            e * 0.4 * std::sin(0.2 * tau), e * 0.05 * std::sin(0.6 * tau), e * 0.05 * std::sin(0.8 * tau)};
+  }
+  if (name == "figure8") {
+    const double w = 2 * kPi / 12.0;
+    return {centre + e * Vec3(1.5 * std::sin(w * tau), 1.0 * std::sin(2 * w * tau), 0.2 * std::sin(0.5 * w * tau)),
+            e * 0.6 * std::sin(w * tau), e * 0.05 * std::sin(3 * w * tau), e * 0.15 * std::sin(2 * w * tau)};
+  }
+  if (name == "aggressive") {
+    const double w = 2 * kPi / 6.0;
+    return {centre + e * Vec3(1.6 * std::sin(w * tau) + 0.15 * std::sin(2 * kPi * 1.3 * tau),
+                              1.0 * std::sin(2 * w * tau), 0.25 * std::sin(2 * kPi * 1.5 * tau)),
+            e * (0.8 * std::sin(w * tau) + 0.25 * std::sin(2 * kPi * 0.9 * tau)),
+            e * 0.3 * std::sin(2 * kPi * 1.1 * tau + 1.0), e * 0.55 * std::sin(2 * kPi * 1.6 * tau)};
+  }
+  if (name == "throw") {
+    // Walking a circle (0.7 m/s) with the rig in hand at 1.2 m, facing along
+    // the walk; every 3 s a 0.7 s ballistic flight with a full roll.
+    const double radius = 2.0, speed = 0.7, hand = 1.2, period = 3.0, flight = 0.7;
+    const double walk = e * speed * tau;  // arc length, ramped in
+    const double phi = walk / radius;
+    Vec3 p(radius * std::sin(phi), radius * (1.0 - std::cos(phi)), hand);
+    double roll = 0.0;
+    if (tau > 2.0) {
+      const double in_cycle = std::fmod(tau - 2.0, period);
+      if (in_cycle < flight) {
+        const double v0 = 0.5 * kGravity * flight;
+        p.z() += v0 * in_cycle - 0.5 * kGravity * in_cycle * in_cycle;
+        roll = 2 * kPi * smootherstep(in_cycle / flight);
+      }
+    }
+    return {p, phi, 0.0, roll};
+  }
+  throw InputError("unknown scenario '" + name + "' (expected hover, figure8, aggressive or throw)");
+}
+
+}  // namespace
+
+const std::vector<std::string>& scenarioNames() {
+  static const std::vector<std::string> names = {"hover", "figure8", "aggressive", "throw"};
+  return names;
+}
+
+io::Trajectory scenarioSamples(const std::string& name, double duration_s, double static_start_s, const SE3& T_b_c) {
+  const std::int64_t step = 5000000;  // 200 Hz
+  const SO3 R_c_b = T_b_c.so3().inverse();
+  io::Trajectory out;
+  const auto n = static_cast<std::int64_t>(std::ceil(duration_s * 1e9 / static_cast<double>(step)));
+  for (std::int64_t k = 0; k <= n; ++k) {
+    const double t = static_cast<double>(k * step) * 1e-9;
+    const Motion m = scenarioMotion(name, std::max(0.0, t - static_start_s));
+    io::TrajectorySample s;
+    s.t_ns = kScenarioStartNs + k * step;
+    // R_w_b = R_w_c · R_c_b; the body position follows from the camera's.
+    const SO3 R_w_c = cameraOrientation(m.yaw, m.pitch, m.roll);
+    const SO3 R_w_b = R_w_c * R_c_b;
+    s.T_w_b = SE3(R_w_b, m.p - R_w_b * T_b_c.translation());
+    out.push_back(s);
+  }
+  return out;
+}
+
+SplineTrajectory fitSpline(const io::Trajectory& samples, std::int64_t begin_ns, std::int64_t end_ns,
+                           double knot_dt_s, double max_gap_s, const std::string& source) {
+  const auto seconds = [](std::int64_t t) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(t) * 1e-9);
+    return std::string(buf);
+  };
+  if (samples.size() < 2) throw InputError(source, 0, "trajectory has fewer than 2 poses");
+  if (end_ns <= begin_ns) throw InputError(source, 0, "empty time span requested");
+  if (begin_ns < samples.front().t_ns || end_ns > samples.back().t_ns)
+    throw InputError(source, 0,
+                     "trajectory covers [" + seconds(samples.front().t_ns) + ", " + seconds(samples.back().t_ns) +
+                         "] s but [" + seconds(begin_ns) + ", " + seconds(end_ns) +
+                         "] s was requested (check --start and --duration)");
+  const auto gap_ns = static_cast<std::int64_t>(max_gap_s * 1e9);
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    if (samples[i].t_ns < begin_ns - 2 * gap_ns || samples[i - 1].t_ns > end_ns + 2 * gap_ns) continue;
+    if (samples[i].t_ns - samples[i - 1].t_ns > gap_ns)
+      throw InputError(source, 0,
+                       "gap of " + seconds(samples[i].t_ns - samples[i - 1].t_ns) + " s in the trajectory at t = " +
+                           seconds(samples[i - 1].t_ns) + " s (longest allowed: sim.max_trajectory_gap_s = " +
+                           std::to_string(max_gap_s) + " s)");
+  }
+  const auto dt = static_cast<std::int64_t>(std::llround(knot_dt_s * 1e9));
+  const std::int64_t n = (end_ns - begin_ns + dt - 1) / dt + 3;
+  std::vector<SE3> cps;
+  for (std::int64_t k = 0; k < n; ++k) {
+    // Control point k at begin + (k − 1)·dt, looked up by interpolation (clamped at the ends).
+    const std::int64_t t = std::clamp(begin_ns + (k - 1) * dt, samples.front().t_ns, samples.back().t_ns);
+    const auto it = std::lower_bound(samples.begin(), samples.end(), t,
+                                     [](const io::TrajectorySample& s, std::int64_t v) { return s.t_ns < v; });
+    if (it == samples.begin()) {
+      cps.push_back(it->T_w_b);
+    } else {
+      const auto& a = *(it - 1);
+      const auto& b = *it;
+      const double w = b.t_ns == a.t_ns ? 0.0 : static_cast<double>(t - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns);
+      cps.push_back(geometry::interpolate(a.T_w_b, b.T_w_b, w));
+    }
+  }
+  return SplineTrajectory(begin_ns, dt, std::move(cps));
+}
+
+}  // namespace edgevio::sim
