@@ -136,6 +136,10 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
     begin_ns = samples.front().t_ns + static_cast<std::int64_t>(std::llround(req.start_s * 1e9));
     end_ns = std::isnan(req.duration_s) ? samples.back().t_ns
                                         : begin_ns + static_cast<std::int64_t>(std::llround(req.duration_s * 1e9));
+    if (begin_ns >= samples.back().t_ns || end_ns > samples.back().t_ns)
+      throw InputError(source, 0, "the trajectory covers [" + seconds(samples.front().t_ns) + ", " +
+                                      seconds(samples.back().t_ns) + "] s but [" + seconds(begin_ns) + ", " +
+                                      seconds(end_ns) + "] s was requested (check --start and --duration)");
   }
   constexpr double kMinDuration = 0.5;
   if (static_cast<double>(end_ns - begin_ns) * 1e-9 < kMinDuration)

@@ -38,8 +38,9 @@ SO3 cameraOrientation(double yaw, double pitch, double roll) {
 }
 
 struct Motion {
-  Vec3 p;
+  Vec3 p;  ///< camera position, or the body's when body_position is set
   double yaw, pitch, roll;
+  bool body_position = false;
 };
 
 Motion scenarioMotion(const std::string& name, double tau) {
@@ -78,7 +79,9 @@ Motion scenarioMotion(const std::string& name, double tau) {
         roll = 2 * kPi * smootherstep(in_cycle / flight);
       }
     }
-    return {p, phi, 0.0, roll};
+    // A thrown rig spins about its centre of mass: the body (IMU) position,
+    // not the camera's, follows the ballistic arc.
+    return {p, phi, 0.0, roll, true};
   }
   throw InputError("unknown scenario '" + name + "' (expected hover, figure8, aggressive or throw)");
 }
@@ -103,7 +106,7 @@ io::Trajectory scenarioSamples(const std::string& name, double duration_s, doubl
     // R_w_b = R_w_c · R_c_b; the body position follows from the camera's.
     const SO3 R_w_c = cameraOrientation(m.yaw, m.pitch, m.roll);
     const SO3 R_w_b = R_w_c * R_c_b;
-    s.T_w_b = SE3(R_w_b, m.p - R_w_b * T_b_c.translation());
+    s.T_w_b = SE3(R_w_b, m.body_position ? m.p : Vec3(m.p - R_w_b * T_b_c.translation()));
     out.push_back(s);
   }
   return out;
