@@ -91,14 +91,14 @@ void BM_PngWriteGray8(benchmark::State& state) {
 }
 BENCHMARK(BM_PngWriteGray8)->Unit(benchmark::kMillisecond);
 
-/// The whole simulate loop: 3 s of the figure8 scenario (61 stereo frames), no blur.
+/// The whole simulate loop: 8 s of the figure8 scenario (161 stereo frames), no blur.
 void BM_SimulateStereoFrames(benchmark::State& state) {
   const std::string out = (std::filesystem::temp_directory_path() / "edgevio_bench_sim").string();
   sim::SimRequest r;
   r.out_dir = out;
   r.scenario = "figure8";
   r.start_s = 2.0;
-  r.duration_s = 3.0;
+  r.duration_s = 8.0;
   r.quiet = true;
   sim::SimOptions o;
   std::size_t frames = 0;

@@ -9,17 +9,6 @@
 
 namespace edgevio::sim {
 
-float LightMap::sample(float u, float v) const {
-  const float x = std::clamp((u - u0) * inv_cell, 0.0f, static_cast<float>(nu - 1));
-  const float y = std::clamp((v - v0) * inv_cell, 0.0f, static_cast<float>(nv - 1));
-  const int x0 = std::min(static_cast<int>(x), nu - 2 < 0 ? 0 : nu - 2), y0 = std::min(static_cast<int>(y), nv - 2 < 0 ? 0 : nv - 2);
-  const int x1 = std::min(x0 + 1, nu - 1), y1 = std::min(y0 + 1, nv - 1);
-  const float tx = x - static_cast<float>(x0), ty = y - static_cast<float>(y0);
-  const float a = value[static_cast<std::size_t>(y0 * nu + x0)], b = value[static_cast<std::size_t>(y0 * nu + x1)];
-  const float c = value[static_cast<std::size_t>(y1 * nu + x0)], d = value[static_cast<std::size_t>(y1 * nu + x1)];
-  return (a + tx * (b - a)) + ty * ((c + tx * (d - c)) - (a + tx * (b - a)));
-}
-
 namespace {
 
 constexpr float kLightCell = 0.1f;  // [m]
