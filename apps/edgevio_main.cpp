@@ -21,8 +21,15 @@ int main(int argc, char** argv) {
   info_cmd->add_option("dataset", info.dataset, "Dataset folder (holding mav0/)")->required();
   info_cmd->add_option("--config", info.config, "Config file (YAML; default: built-in defaults)");
 
+  cli::RunArgs run;
   auto* run_cmd = app.add_subcommand("run", "Estimate a trajectory from a dataset");
-  run_cmd->allow_extras();
+  run_cmd->add_option("dataset", run.dataset, "Dataset folder (holding mav0/)")->required();
+  run_cmd->add_option("--out", run.out, "Output folder")->required();
+  run_cmd->add_option("--mode", run.mode, "edge-only | edge+loop | edge+imu | edge+imu+loop")
+      ->check(CLI::IsMember({"edge-only", "edge+loop", "edge+imu", "edge+imu+loop"}));
+  run_cmd->add_option("--config", run.config, "Config file (YAML)");
+  run_cmd->add_option("--skip", run.skip, "Keep every (K+1)-th stereo frame (the IMU is untouched)");
+  run_cmd->add_flag("--realtime", run.realtime, "Play the dataset at sensor rate, dropping frames when behind");
 
   cli::EvalArgs ev;
   auto* eval_cmd = app.add_subcommand("eval", "Evaluate an estimated trajectory against ground truth (ATE, RPE, ARE)");
@@ -72,7 +79,7 @@ int main(int argc, char** argv) {
 
   if (*info_cmd) return cli::info(info, std::cout, std::cerr);
   if (*eval_cmd) return cli::eval(ev, std::cout, std::cerr);
-  if (*run_cmd) return cli::notImplemented("run", "the front-end issue", std::cerr);
+  if (*run_cmd) return cli::run(run, std::cout, std::cerr);
   if (*sim_cmd) return cli::simulate(sim, std::cout, std::cerr);
   if (*bench_cmd) return cli::notImplemented("bench", "the pipeline issue", std::cerr);
   if (*demo_cmd) return cli::notImplemented("demo", "the pipeline issue", std::cerr);

@@ -46,6 +46,14 @@ struct SimulateArgs {
 /// `edgevio simulate`: a synthetic EuRoC ASL folder (issue #4).
 int simulate(const SimulateArgs& args, std::ostream& out, std::ostream& err);
 
+struct RunArgs {
+  std::string dataset, out, mode = "edge-only", config;
+  int skip = 0;
+  bool realtime = false;
+};
+/// `edgevio run`: estimate a trajectory (issues #5-#8).
+int run(const RunArgs& args, std::ostream& out, std::ostream& err);
+
 /// `edgevio eval --results DIR`: evaluates every run folder, writes DIR/report.md
 /// and DIR/report.csv, prints the markdown table.
 int evalResults(const std::string& dir, const eval::EvalOptions& options, std::ostream& out, std::ostream& err);

@@ -12,12 +12,18 @@
 #include "edgevio/eval/eval_options.h"
 #include "edgevio/io/dataset_options.h"
 #include "edgevio/sim/sim_options.h"
+#include "edgevio/tracking/alignment_options.h"
+#include "edgevio/tracking/tracking_options.h"
+#include "edgevio/vision/vision_options.h"
 
 namespace edgevio {
 
 struct Config {
   io::DatasetOptions dataset;
   camera::RectificationOptions rectification;
+  vision::VisionOptions vision;
+  tracking::AlignmentOptions alignment;
+  tracking::TrackingOptions tracking;
   eval::EvalOptions eval;
   sim::SimOptions sim;
 
@@ -25,6 +31,9 @@ struct Config {
   void visitSections(Visitor& v) {
     v("dataset", dataset, "EuRoC/ASL dataset input (METHOD.md §1 driver)");
     v("rectification", rectification, "stereo rectification (METHOD.md §3 pre-processing)");
+    v("vision", vision, "front-end image processing: pyramid, Canny, stereo depth (METHOD.md §3)");
+    v("alignment", alignment, "edge alignment: Gauss-Newton, robust weights, self check (METHOD.md §3)");
+    v("tracking", tracking, "keyframe policy, initial guess, static initialisation (METHOD.md §3, §5)");
     v("eval", eval, "trajectory evaluation: association, alignment, metrics (METHOD.md §8)");
     v("sim", sim, "simulator: motion, scene, camera effects, IMU (edgevio simulate)");
   }

@@ -1,0 +1,31 @@
+#include <ostream>
+
+#include "edgevio/cli/commands.h"
+#include "edgevio/cli/progress.h"
+#include "edgevio/common/error.h"
+#include "edgevio/config/config.h"
+#include "edgevio/pipeline/offline_run.h"
+
+namespace edgevio::cli {
+
+int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
+  if (a.realtime) return notImplemented("run --realtime", "the pipeline issue", err);
+  if (a.mode != "edge-only") return notImplemented("run --mode " + a.mode, "the estimator and loop-closure issues", err);
+  try {
+    const Config config = a.config.empty() ? Config{} : loadConfig(a.config);
+    pipeline::RunRequest r{a.dataset, a.out, a.mode, a.skip};
+    Progress progress("frames", Progress::stderrIsTerminal());
+    const pipeline::RunSummary s = pipeline::runOffline(
+        r, config, [&](std::size_t done, std::size_t total, double seq_s) { progress.update(done, total, seq_s); });
+    out << "mode " << a.mode << ": " << s.frames << " frames, " << s.keyframes << " keyframes, "
+        << s.self_check_failures << " self-check failures, " << s.wall_s << " s wall, real-time factor "
+        << s.realtime_factor << (s.failed ? ", FAILED: " + s.failure : std::string()) << "\n"
+        << "wrote " << a.out << "/{trajectory_tum.txt, trajectory.csv, frames.csv, summary.json, config.yaml}\n";
+    return s.failed ? kExitError : kExitOk;
+  } catch (const InputError& e) {
+    err << "error: " << e.what() << "\n";
+    return kExitError;
+  }
+}
+
+}  // namespace edgevio::cli

@@ -1,0 +1,87 @@
+#include "edgevio/imu/gyro_integration.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace edgevio::imu {
+
+using geometry::SO3;
+
+namespace {
+Vec3 gyroAt(const io::ImuSample& a, const io::ImuSample& b, std::int64_t t) {
+  const double w = b.t_ns == a.t_ns ? 0.0 : static_cast<double>(t - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns);
+  return (1.0 - w) * a.gyro + w * b.gyro;
+}
+}  // namespace
+
+bool integrateGyro(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::int64_t t1, const Vec3& bias, SO3* R) {
+  *R = SO3();
+  if (imu.size() < 2 || t1 <= t0 || imu.front().t_ns > t0 || imu.back().t_ns < t1) return false;
+  auto it = std::upper_bound(imu.begin(), imu.end(), t0, [](std::int64_t t, const io::ImuSample& s) { return t < s.t_ns; });
+  // it: first sample after t0; the interval [t0, t1] is cut at every sample inside it.
+  std::int64_t t = t0;
+  Vec3 w_prev = gyroAt(*(it - 1), *it, t0);
+  SO3 acc;
+  while (t < t1) {
+    const std::int64_t t_next = std::min(it->t_ns, t1);
+    const Vec3 w_next = t_next == it->t_ns ? it->gyro : gyroAt(*(it - 1), *it, t_next);
+    acc = acc * SO3::exp((0.5 * (w_prev + w_next) - bias) * (static_cast<double>(t_next - t) * 1e-9));
+    t = t_next;
+    w_prev = w_next;
+    if (t_next == it->t_ns && it + 1 != imu.end()) ++it;
+  }
+  *R = acc;
+  return true;
+}
+
+StaticInit staticInitialization(const std::vector<io::ImuSample>& imu, std::int64_t t0, double window_s,
+                                double accel_std_max, double gyro_std_max) {
+  // Motion is judged on 0.1 s means: rotor vibration (a standing drone reads
+  // ~1 m/s² of spread per sample) averages out, real motion does not.
+  constexpr std::int64_t kChunk = 100000000;
+  StaticInit s;
+  const auto t1 = t0 + static_cast<std::int64_t>(window_s * 1e9);
+  std::vector<Vec3> chunk_a, chunk_g;
+  Vec3 sa = Vec3::Zero(), sg = Vec3::Zero(), ca = Vec3::Zero(), cg = Vec3::Zero();
+  int in_chunk = 0;
+  std::int64_t chunk_end = t0 + kChunk;
+  for (const auto& m : imu) {
+    if (m.t_ns < t0 || m.t_ns > t1) continue;
+    while (m.t_ns >= chunk_end) {
+      if (in_chunk > 0) {
+        chunk_a.push_back(ca / in_chunk);
+        chunk_g.push_back(cg / in_chunk);
+      }
+      ca = cg = Vec3::Zero();
+      in_chunk = 0;
+      chunk_end += kChunk;
+    }
+    sa += m.accel;
+    sg += m.gyro;
+    ca += m.accel;
+    cg += m.gyro;
+    ++in_chunk;
+    ++s.samples;
+  }
+  if (s.samples < 10 || chunk_a.size() < 3) return s;
+  const double n = static_cast<double>(s.samples);
+  s.mean_accel = sa / n;
+  const Vec3 mg = sg / n;
+  const auto spread = [](const std::vector<Vec3>& v) {
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& x : v) mean += x;
+    mean /= static_cast<double>(v.size());
+    double ss = 0.0;
+    for (const Vec3& x : v) ss += (x - mean).squaredNorm();
+    return std::sqrt(ss / static_cast<double>(v.size()));
+  };
+  s.is_static = spread(chunk_a) < accel_std_max && spread(chunk_g) < gyro_std_max && s.mean_accel.norm() > 5.0;
+  if (!s.is_static) return s;
+  s.gyro_bias = mg;
+  // R_w_b maps the measured "up" (specific force at rest) onto world z; the
+  // rotation is the smallest one (so yaw is left at its zero).
+  s.R_w_b = SO3(Quat::FromTwoVectors(s.mean_accel.normalized(), Vec3::UnitZ()));
+  return s;
+}
+
+}  // namespace edgevio::imu

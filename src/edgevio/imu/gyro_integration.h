@@ -1,0 +1,34 @@
+#pragma once
+// Small IMU helpers the front end needs before the estimator exists:
+// rotation from integrating the gyroscope between two times (the initial
+// guess of an alignment, METHOD.md §3), and static initialisation
+// (METHOD.md §5: roll and pitch from the mean accelerometer reading, gyro bias
+// from the mean gyro reading, yaw 0).
+#include <cstdint>
+#include <vector>
+
+#include "edgevio/geometry/so3.h"
+#include "edgevio/io/imu_sample.h"
+
+namespace edgevio::imu {
+
+/// R_{b(t0) b(t1)}: body rotation from t0 to t1, Π exp((ω̄ − b_g)·Δt) with ω̄ the
+/// mean of consecutive samples (midpoint rule), samples clipped to [t0, t1] by
+/// linear interpolation. Returns false (and identity) without IMU coverage.
+bool integrateGyro(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns, const Vec3& gyro_bias,
+                   geometry::SO3* R_b0_b1);
+
+struct StaticInit {
+  bool is_static = false;       ///< the window looked static (low accel and gyro spread)
+  geometry::SO3 R_w_b;          ///< gravity-aligned orientation, yaw 0 (identity if not static)
+  Vec3 gyro_bias = Vec3::Zero();
+  Vec3 mean_accel = Vec3::Zero();
+  std::size_t samples = 0;
+};
+
+/// Uses the IMU samples in [t0, t0 + window]; static when the spread of the
+/// 0.1 s means is below accel_std_max [m/s²] and gyro_std_max [rad/s].
+StaticInit staticInitialization(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, double window_s,
+                                double accel_std_max, double gyro_std_max);
+
+}  // namespace edgevio::imu

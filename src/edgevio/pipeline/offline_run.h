@@ -1,0 +1,37 @@
+#pragma once
+// `edgevio run` in offline mode: the dataset is processed frame by frame on
+// the calling thread, so the same input and config give the same trajectory,
+// bit for bit. Writes to the output folder:
+//   trajectory_tum.txt, trajectory.csv  the causal body pose of every processed frame
+//   frames.csv                          per frame: keyframe, self check, points, iterations,
+//                                       mean distance, milliseconds per component
+//   summary.json                        mode, counts, failed, wall time, real-time factor
+//   config.yaml                         the configuration used
+#include <functional>
+#include <string>
+
+#include "edgevio/config/config.h"
+
+namespace edgevio::pipeline {
+
+struct RunRequest {
+  std::string dataset;
+  std::string out_dir;
+  std::string mode = "edge-only";
+  int skip = 0;  ///< keep every (skip+1)-th stereo frame; the IMU is untouched
+};
+
+struct RunSummary {
+  std::size_t frames = 0, keyframes = 0, self_check_failures = 0, skipped_unreadable = 0;
+  bool failed = false;
+  std::string failure;
+  double wall_s = 0.0, duration_s = 0.0, realtime_factor = 0.0;
+};
+
+/// (frames done, frames total, sequence seconds done)
+using RunProgress = std::function<void(std::size_t, std::size_t, double)>;
+
+/// Throws InputError for bad input; a run that loses track returns failed = true.
+RunSummary runOffline(const RunRequest& request, const Config& config, const RunProgress& progress = {});
+
+}  // namespace edgevio::pipeline

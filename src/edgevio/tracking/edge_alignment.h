@@ -1,0 +1,59 @@
+#pragma once
+// Edge alignment (METHOD.md §3, paper §5): the pose T_nr that maps reference
+// edge points P_i (keyframe camera frame) into the current camera so that
+// they land on the current frame's edges:
+//   υ_i(T) = V_n(π(T·P_i))                        (eq 5, V = distance transform)
+//   f(T) = Σ w_i υ_i²                             (eq 6, robust weights w_i)
+// Deviation (AlignmentOptions::residual, default point_to_line): near an edge
+// υ_i is replaced by the signed distance to the nearest sub-pixel edge line;
+// V's cone tip stalls Gauss-Newton at ~0.5 px (see vision/distance_transform.h).
+// Gauss-Newton on SE(3) with right perturbations T ← T·exp(ξ), ξ = (δp, δθ):
+//   J_i = ∇V(u)ᵀ · ∂π/∂P' · R·[I | −hat(P_i)],   (JᵀWJ) ξ = −JᵀWυ   (eqs 9-11)
+// coarse to fine over the pyramid, keeping the best iterate per level. The
+// covariance of the result is (JᵀWJ)⁻¹ at the last finest-level iteration
+// (paper §6.3), in the current camera frame's tangent space.
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "edgevio/geometry/se3.h"
+#include "edgevio/tracking/alignment_options.h"
+#include "edgevio/vision/edge_pyramid.h"
+
+namespace edgevio::tracking {
+
+using Jacobian16 = Eigen::Matrix<double, 1, 6>;
+using Jacobian26 = Eigen::Matrix<double, 2, 6>;
+
+/// Pixel of T·P at a level and its Jacobian ∂(u,v)/∂ξ; false when Z ≤ 0.
+bool projectWithJacobian(const Vec3& P, const geometry::SE3& T, const vision::LevelCamera& cam, Vec2* uv,
+                         Jacobian26* J);
+
+/// υ and ∂υ/∂ξ of one reference point; false when it lands outside the
+/// border or behind the camera (the point is dropped for this iteration).
+/// With `point_to_line` (and lines in `dt`) υ is the signed distance to the
+/// nearest edge line, (u − e)·n, and ∂υ/∂ξ = nᵀ ∂u/∂ξ; else υ = V(u) (eq 5).
+/// `distance` (optional) receives V(u) either way, for the self check.
+bool edgeResidual(const Vec3& P, const geometry::SE3& T, const vision::LevelCamera& cam,
+                  const vision::DistanceTransform& dt, int border, double* r, Jacobian16* J,
+                  bool point_to_line = false, double* distance = nullptr);
+
+struct AlignmentResult {
+  geometry::SE3 T_nr;
+  Mat6 covariance = Mat6::Identity();  ///< (JᵀWJ)⁻¹ at level 0 [m², rad²]
+  bool self_check_passed = false;
+  double mean_distance_px = 0.0;       ///< mean υ of the visible points at level 0
+  double visible_ratio = 0.0;          ///< fraction of level-0 points inside the image
+  int points_used = 0;                 ///< visible points at level 0
+  int iterations = 0;                  ///< over all levels
+  double ms = 0.0;
+};
+
+/// Aligns the reference points (per level, keyframe camera frame) to the
+/// current pyramid, starting from T_nr_init, from level `coarsest` (−1: the
+/// coarsest available) down to level 0.
+AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& reference_points,
+                           const vision::EdgePyramid& current, const geometry::SE3& T_nr_init,
+                           const AlignmentOptions& options, int coarsest = -1);
+
+}  // namespace edgevio::tracking

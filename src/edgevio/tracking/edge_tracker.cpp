@@ -1,0 +1,107 @@
+#include "edgevio/tracking/edge_tracker.h"
+
+#include "edgevio/vision/edge_pyramid.h"
+
+namespace edgevio::tracking {
+
+using geometry::SE3;
+using geometry::SO3;
+
+std::string TrackingOptions::validate() const {
+  if (!(keyframe_edge_ratio > 1.0)) return "keyframe_edge_ratio: must be > 1";
+  if (keyframe_min_points < 0) return "keyframe_min_points: must be >= 0";
+  if (!(keyframe_min_visible_ratio >= 0 && keyframe_min_visible_ratio <= 1)) return "keyframe_min_visible_ratio: in [0, 1]";
+  if (translation_prior != "previous" && translation_prior != "constant_velocity")
+    return "translation_prior: previous or constant_velocity";
+  if (lost_after_failures < 1) return "lost_after_failures: at least 1";
+  if (!(gyro_check_deg > 0)) return "gyro_check_deg: must be > 0";
+  if (gyro_check_realign_levels < 1) return "gyro_check_realign_levels: at least 1";
+  if (!(static_init_window_s > 0)) return "static_init_window_s: must be > 0";
+  if (!(static_accel_std_max > 0 && static_gyro_std_max > 0)) return "static_*_std_max: must be > 0";
+  return {};
+}
+
+EdgeTracker::EdgeTracker(const camera::StereoRectifier& rectifier, const vision::VisionOptions& vision,
+                         const AlignmentOptions& alignment, const TrackingOptions& tracking)
+    : rect_(rectifier), vision_(vision), alignment_(alignment), tracking_(tracking), T_b_c_(rectifier.T_b_rect(0)) {}
+
+void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const SE3& T_w_c, FrameTrack* out) {
+  Keyframe kf;
+  kf.depth = vision::computeKeyframeDepth(pyramid, vision::downsample2(right_full), rect_.baseline(), vision_);
+  kf.pyramid = std::move(pyramid);
+  kf.T_w_c = T_w_c;
+  out->bm_ms = kf.depth.bm_ms;
+  out->keyframe = true;
+  keyframe_ = std::move(kf);
+}
+
+FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>& R_prev_cur, const SE3& T_w_b_init) {
+  FrameTrack out;
+  out.t_ns = frame.t_ns;
+  vision::EdgePyramid pyr = vision::buildEdgePyramid(frame.left, rect_.rectifiedCamera(), vision_);
+  out.canny_ms = pyr.canny_ms;
+  out.dt_ms = pyr.dt_ms;
+
+  if (!keyframe_) {
+    out.T_w_b = T_w_b_init;
+    out.keyframe_reason = "first frame";
+    makeKeyframe(std::move(pyr), frame.right, T_w_b_init * T_b_c_, &out);
+    T_w_b_prev_ = T_w_b_prev2_ = out.T_w_b;
+    ++frames_;
+    return out;
+  }
+
+  // Prediction: rotation from the gyroscope, translation from the previous estimate(s).
+  const SO3 R_pred = T_w_b_prev_.so3() * (R_prev_cur ? *R_prev_cur : SO3());
+  Vec3 p_pred = T_w_b_prev_.translation();
+  if (tracking_.translation_prior == "constant_velocity") p_pred += T_w_b_prev_.translation() - T_w_b_prev2_.translation();
+  const SE3 T_w_b_pred(R_pred, p_pred);
+  const SE3 T_nr_init = (T_w_b_pred * T_b_c_).inverse() * keyframe_->T_w_c;
+
+  out.aligned = true;
+  out.reference_points = static_cast<int>(keyframe_->depth.points.empty() ? 0 : keyframe_->depth.points[0].size());
+  out.alignment = alignEdges(keyframe_->depth.points, pyr, T_nr_init, alignment_);
+  // Gyro check: the gyroscope's rotation over one frame is accurate to a
+  // fraction of a degree; an alignment far from it has converged to a wrong
+  // minimum (repetitive texture), so re-align from the prediction on the fine
+  // levels only, where the basin cannot reach the wrong one.
+  const auto rotationError = [&](const SE3& T_nr) {
+    return geometry::angle(T_nr.so3().inverse() * T_nr_init.so3()) * 180.0 / 3.14159265358979323846;
+  };
+  const double elapsed_frames_ok = R_prev_cur ? 1.0 : 0.0;
+  if (elapsed_frames_ok > 0 && rotationError(out.alignment.T_nr) > tracking_.gyro_check_deg) {
+    out.gyro_check_failed = true;
+    const AlignmentResult fine =
+        alignEdges(keyframe_->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1);
+    const double ms = out.alignment.ms;
+    out.alignment = fine;
+    out.alignment.ms += ms;
+    if (rotationError(fine.T_nr) > tracking_.gyro_check_deg) out.alignment.self_check_passed = false;
+  }
+  out.self_check_passed = out.alignment.self_check_passed;
+
+  if (out.self_check_passed) {
+    consecutive_failures_ = 0;
+    out.T_w_b = keyframe_->T_w_c * out.alignment.T_nr.inverse() * T_b_c_.inverse();
+    // Keyframe policy (METHOD.md §3).
+    for (int l = 0; l < std::min<int>(2, static_cast<int>(pyr.levels.size())); ++l) {
+      const double a = pyr.levels[static_cast<std::size_t>(l)].edge_count;
+      const double b = keyframe_->pyramid.levels[static_cast<std::size_t>(l)].edge_count;
+      if (a > tracking_.keyframe_edge_ratio * b || b > tracking_.keyframe_edge_ratio * a) out.keyframe_reason = "edge count changed";
+    }
+    if (out.reference_points < tracking_.keyframe_min_points) out.keyframe_reason = "too few reference points";
+    if (out.alignment.visible_ratio < tracking_.keyframe_min_visible_ratio) out.keyframe_reason = "points leaving the view";
+  } else {
+    // The link is not used: the frame keeps its prediction and becomes a keyframe.
+    ++consecutive_failures_;
+    out.T_w_b = T_w_b_pred;
+    out.keyframe_reason = "self check failed";
+  }
+  if (!out.keyframe_reason.empty()) makeKeyframe(std::move(pyr), frame.right, out.T_w_b * T_b_c_, &out);
+  T_w_b_prev2_ = T_w_b_prev_;
+  T_w_b_prev_ = out.T_w_b;
+  ++frames_;
+  return out;
+}
+
+}  // namespace edgevio::tracking

@@ -1,0 +1,71 @@
+#pragma once
+// Edge-only visual odometry (METHOD.md §3): every frame is aligned to the
+// current keyframe; the self check and the keyframe policy decide when a
+// frame becomes the new keyframe (with its own stereo depth). The estimate is
+// causal: the pose of a frame is known when the frame has been processed.
+#include <opencv2/core.hpp>
+
+#include <optional>
+#include <string>
+
+#include "edgevio/camera/stereo_rectifier.h"
+#include "edgevio/tracking/edge_alignment.h"
+#include "edgevio/tracking/tracking_options.h"
+#include "edgevio/vision/keyframe_depth.h"
+
+namespace edgevio::tracking {
+
+/// A rectified stereo pair at full resolution.
+struct StereoFrame {
+  std::int64_t t_ns = 0;
+  cv::Mat left, right;
+};
+
+/// What happened to one frame.
+struct FrameTrack {
+  std::int64_t t_ns = 0;
+  geometry::SE3 T_w_b;            ///< causal estimate of the body pose
+  bool keyframe = false;
+  bool aligned = false;           ///< an alignment was attempted (not for the first frame)
+  bool self_check_passed = false;
+  bool gyro_check_failed = false; ///< the first alignment disagreed with the gyroscope (re-aligned)
+  std::string keyframe_reason;    ///< why it became a keyframe
+  AlignmentResult alignment;
+  int reference_points = 0;       ///< level-0 reference points of the keyframe it was aligned to
+  double canny_ms = 0, dt_ms = 0, bm_ms = 0;
+};
+
+class EdgeTracker {
+ public:
+  EdgeTracker(const camera::StereoRectifier& rectifier, const vision::VisionOptions& vision,
+              const AlignmentOptions& alignment, const TrackingOptions& tracking);
+
+  /// The first frame starts at T_w_b_init and becomes the first keyframe.
+  /// `R_prev_cur` is the body rotation since the previous frame (from the
+  /// gyroscope) when available.
+  FrameTrack track(const StereoFrame& frame, const std::optional<geometry::SO3>& R_prev_cur,
+                   const geometry::SE3& T_w_b_init = geometry::SE3());
+
+  int consecutiveFailures() const { return consecutive_failures_; }
+  bool lost() const { return consecutive_failures_ >= tracking_.lost_after_failures; }
+
+ private:
+  struct Keyframe {
+    vision::EdgePyramid pyramid;
+    vision::KeyframeDepth depth;
+    geometry::SE3 T_w_c;
+  };
+  void makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const geometry::SE3& T_w_c, FrameTrack* out);
+
+  const camera::StereoRectifier& rect_;
+  vision::VisionOptions vision_;
+  AlignmentOptions alignment_;
+  TrackingOptions tracking_;
+  geometry::SE3 T_b_c_;  // body → rectified left camera
+  std::optional<Keyframe> keyframe_;
+  geometry::SE3 T_w_b_prev_, T_w_b_prev2_;
+  int frames_ = 0;
+  int consecutive_failures_ = 0;
+};
+
+}  // namespace edgevio::tracking

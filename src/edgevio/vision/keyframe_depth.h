@@ -1,0 +1,26 @@
+#pragma once
+// Reference edges of a keyframe (METHOD.md §3): disparity by stereo block
+// matching on the level-0 rectified pair, inverse depth ρ = d/(f·b) at valid
+// pixels (d ≥ min disparity), pooled up the pyramid as the inverse-variance
+// mean of each pixel's valid 2x2 children, and the edge pixels of every level
+// with a valid ρ back-projected: P = (1/ρ)·K⁻¹[u, v, 1].
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+#include "edgevio/vision/edge_pyramid.h"
+
+namespace edgevio::vision {
+
+struct KeyframeDepth {
+  /// Per level: reference points in the keyframe's rectified left camera frame [m].
+  std::vector<std::vector<Eigen::Vector3f>> points;
+  double bm_ms = 0.0;
+};
+
+/// `right_level0`: the rectified right image downsampled to level 0.
+KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right_level0, double baseline_m,
+                                   const VisionOptions& options);
+
+}  // namespace edgevio::vision
