@@ -67,8 +67,11 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--config", sim.config, "Config file (YAML)");
   auto* bench_cmd = app.add_subcommand("bench", "Run a benchmark matrix of sequences x modes x skips");
   bench_cmd->allow_extras();
+  cli::DemoArgs demo;
   auto* demo_cmd = app.add_subcommand("demo", "Simulate, estimate and evaluate a default sequence");
-  demo_cmd->allow_extras();
+  demo_cmd->add_option("--out", demo.out, "Output folder");
+  demo_cmd->add_option("--duration", demo.duration_s, "Length of the simulated sequence [s]");
+  demo_cmd->add_flag("--fresh", demo.fresh, "Render the sequence again even if it exists");
 
   CLI11_PARSE(app, argc, argv);
 
@@ -82,7 +85,7 @@ int main(int argc, char** argv) {
   if (*run_cmd) return cli::run(run, std::cout, std::cerr);
   if (*sim_cmd) return cli::simulate(sim, std::cout, std::cerr);
   if (*bench_cmd) return cli::notImplemented("bench", "the pipeline issue", std::cerr);
-  if (*demo_cmd) return cli::notImplemented("demo", "the pipeline issue", std::cerr);
+  if (*demo_cmd) return cli::demo(demo, std::cout, std::cerr);
   std::cerr << app.help();
   return cli::kExitError;
 }

@@ -54,6 +54,14 @@ struct RunArgs {
 /// `edgevio run`: estimate a trajectory (issues #5-#8).
 int run(const RunArgs& args, std::ostream& out, std::ostream& err);
 
+struct DemoArgs {
+  std::string out = "out/demo";
+  double duration_s = 20.0;
+  bool fresh = false;
+};
+/// `edgevio demo`: simulate, estimate, evaluate, print the table.
+int demo(const DemoArgs& args, std::ostream& out, std::ostream& err);
+
 /// `edgevio eval --results DIR`: evaluates every run folder, writes DIR/report.md
 /// and DIR/report.csv, prints the markdown table.
 int evalResults(const std::string& dir, const eval::EvalOptions& options, std::ostream& out, std::ostream& err);

@@ -41,6 +41,7 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>
   vision::EdgePyramid pyr = vision::buildEdgePyramid(frame.left, rect_.rectifiedCamera(), vision_);
   out.canny_ms = pyr.canny_ms;
   out.dt_ms = pyr.dt_ms;
+  out.lines_ms = pyr.lines_ms;
 
   if (!keyframe_) {
     out.T_w_b = T_w_b_init;

@@ -32,7 +32,7 @@ struct FrameTrack {
   std::string keyframe_reason;    ///< why it became a keyframe
   AlignmentResult alignment;
   int reference_points = 0;       ///< level-0 reference points of the keyframe it was aligned to
-  double canny_ms = 0, dt_ms = 0, bm_ms = 0;
+  double canny_ms = 0, dt_ms = 0, lines_ms = 0, bm_ms = 0;  ///< dt_ms includes lines_ms
 };
 
 class EdgeTracker {

@@ -32,6 +32,8 @@ class DistanceTransform {
   void valueAndGradient(double u, double v, float* value, float* du, float* dv) const;
   const cv::Mat& distance() const { return dist_; }
   bool hasLines() const { return !nearest_.empty(); }
+  /// Time spent building the lines [ms].
+  double linesMs() const { return lines_ms_; }
   /// Nearest edge of pixel (round(u), round(v)) as a sub-pixel point and unit normal.
   void nearestLine(double u, double v, Vec2* point, Vec2* normal) const;
 
@@ -40,6 +42,7 @@ class DistanceTransform {
   cv::Mat dist_, gu_, gv_;     // CV_32FC1
   cv::Mat nearest_;            // CV_32SC1: index into lines_ of the nearest edge pixel
   std::vector<Eigen::Vector4f> lines_;  // (x, y, nx, ny) per edge pixel
+  double lines_ms_ = 0.0;
 };
 
 }  // namespace edgevio::vision

@@ -64,6 +64,7 @@ EdgePyramid buildEdgePyramid(const cv::Mat& rectified_full, const camera::Camera
     // Edge lines serve the point-to-line residual, used on level 0 only.
     if (with_distance_transform) level.dt = l == 0 ? DistanceTransform(level.edges, img) : DistanceTransform(level.edges);
     const auto t2 = Clock::now();
+    if (with_distance_transform && l == 0) p.lines_ms = level.dt.linesMs();
     p.canny_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
     p.dt_ms += std::chrono::duration<double, std::milli>(t2 - t1).count();
     p.levels.push_back(std::move(level));

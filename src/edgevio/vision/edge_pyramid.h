@@ -32,6 +32,7 @@ struct EdgeLevel {
 struct EdgePyramid {
   std::vector<EdgeLevel> levels;
   double canny_ms = 0.0, dt_ms = 0.0;  ///< time spent, for frames.csv and benchmarks
+  double lines_ms = 0.0;               ///< of which: sub-pixel edge lines on level 0 (not in the paper)
 };
 
 /// 2x2 block average (odd trailing rows/columns dropped).
