@@ -46,6 +46,11 @@ std::string TempDir::write(const std::string& name, const std::string& text) con
   return p.string();
 }
 
+std::string readFile(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
 Eigen::MatrixXd numericJacobian(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f,
                                 const Eigen::VectorXd& x, double h) {
   const Eigen::VectorXd f0 = f(x);

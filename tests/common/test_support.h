@@ -35,6 +35,9 @@ class TempDir {
   std::string path_;
 };
 
+/// The whole file as bytes ("" if it cannot be read).
+std::string readFile(const std::string& path);
+
 /// Central-difference Jacobian of f: R^n → R^m at x, step h.
 Eigen::MatrixXd numericJacobian(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f,
                                 const Eigen::VectorXd& x, double h = 1e-6);

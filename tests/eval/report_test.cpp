@@ -30,12 +30,6 @@ io::Trajectory circle(double offset_m) {
   return t;
 }
 
-std::string readFile(const std::string& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 TEST(Report, JsonHasTheDocumentedKeys) {
   const EvalResult r = evaluate(circle(0), circle(0.05), EvalOptions{});
@@ -90,7 +84,7 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
   EXPECT_EQ(ok, 1u);
   std::ostringstream out, err;
   ASSERT_EQ(cli::evalResults(dir.path(), EvalOptions{}, out, err), cli::kExitOk) << err.str();
-  const std::string md = readFile(dir.file("report.md")), csv = readFile(dir.file("report.csv"));
+  const std::string md = test::readFile(dir.file("report.md")), csv = test::readFile(dir.file("report.csv"));
   EXPECT_NE(md.find("4 runs, 3 failed"), std::string::npos) << md;
   EXPECT_NE(md.find("| seqA | edge+imu | ok |"), std::string::npos) << md;
   EXPECT_NE(md.find("| seqA | edge-only | **FAILED**"), std::string::npos) << md;
@@ -113,7 +107,7 @@ TEST(EvalCommand, SegmentsAndErrors) {
   std::ostringstream out, err;
   ASSERT_EQ(cli::eval(a, out, err), cli::kExitOk) << err.str();
   EXPECT_NE(out.str().find("\"are_lengths_m\": [\n    2,\n    4\n  ]"), std::string::npos) << out.str();
-  EXPECT_NE(readFile(a.plot).find("</svg>"), std::string::npos);
+  EXPECT_NE(test::readFile(a.plot).find("</svg>"), std::string::npos);
 
   for (const std::string bad : {"10", "5km", "10%,2m", "%"}) {
     a.segments = bad;

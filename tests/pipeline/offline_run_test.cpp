@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/mini_dataset.h"
 #include "common/test_support.h"
 #include "edgevio/common/error.h"
 #include "edgevio/eval/metrics.h"
@@ -21,12 +22,6 @@ namespace {
 
 using test::TempDir;
 
-std::string readAll(const std::string& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 TEST(OfflineRun, RealStaticFolderDriftsLessThan5cm) {
   EDGEVIO_REQUIRE_SHARED_DATA("euroc/V1_01_easy_micro");
@@ -83,7 +78,7 @@ TEST(OfflineRun, ShortRenderedSequenceIsAccurateAndDeterministic) {
   runOffline({simulated().dataset, b.path(), "edge-only", 0}, Config{});
   EXPECT_FALSE(s.failed) << s.failure;
   EXPECT_EQ(s.frames, 81u);
-  EXPECT_EQ(readAll(a.file("trajectory_tum.txt")), readAll(b.file("trajectory_tum.txt"))) << "not bit-for-bit repeatable";
+  EXPECT_EQ(test::readFile(a.file("trajectory_tum.txt")), test::readFile(b.file("trajectory_tum.txt"))) << "not bit-for-bit repeatable";
   const eval::EvalResult r =
       eval::evaluate(io::readTrajectory(simulated().dataset + "/mav0/state_groundtruth_estimate0/data.csv"),
                      io::readTrajectory(a.file("trajectory_tum.txt")), eval::EvalOptions{});
@@ -91,12 +86,12 @@ TEST(OfflineRun, ShortRenderedSequenceIsAccurateAndDeterministic) {
               r.are_rot_deg_per_m, r.are_trans_m_per_m, s.keyframes);
   EXPECT_LT(r.ate_rmse_m, 0.05);  // measured 0.029 m
   // Outputs of the run folder.
-  const std::string summary = readAll(a.file("summary.json"));
+  const std::string summary = test::readFile(a.file("summary.json"));
   for (const char* key : {"\"mode\": \"edge-only\"", "\"frames\": 81", "\"keyframes\"", "\"self_check_failures\"",
                           "\"external_check_rejections\"", "\"loop_closures\"", "\"failed\": false", "\"wall_s\"",
                           "\"realtime_factor\""})
     EXPECT_NE(summary.find(key), std::string::npos) << key;
-  std::istringstream frames(readAll(a.file("frames.csv")));
+  std::istringstream frames(test::readFile(a.file("frames.csv")));
   std::string line;
   int rows = 0;
   while (std::getline(frames, line)) ++rows;
@@ -114,11 +109,13 @@ TEST(OfflineRun, SkipKeepsEveryKPlusOneFrame) {
 
 TEST(OfflineRun, BadInputIsAnError) {
   TempDir out;
+  const std::string mini = test::writeMiniDataset(out);
   EXPECT_THROW(runOffline({out.file("missing"), out.file("o"), "edge-only", 0}, Config{}), InputError);
-  EXPECT_THROW(runOffline({simulated().dataset, out.file("o"), "edge+imu", 0}, Config{}), InputError);
+  EXPECT_THROW(runOffline({mini, out.file("o"), "edge+imu", 0}, Config{}), InputError);
+  EXPECT_THROW(runOffline({mini, out.file("o"), "edge-only", -1}, Config{}), InputError);
   Config bad;
   bad.alignment.weight = "tukey";
-  EXPECT_THROW(runOffline({simulated().dataset, out.file("o"), "edge-only", 0}, bad), InputError);
+  EXPECT_THROW(runOffline({mini, out.file("o"), "edge-only", 0}, bad), InputError);
 }
 
 }  // namespace

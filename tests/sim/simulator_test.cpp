@@ -36,12 +36,6 @@ SimRequest shortScenario(const std::string& out) {
   return r;
 }
 
-std::string readAll(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 TEST(Simulator, WritesAnAslFolderTheReaderAccepts) {
   TempDir dir;
@@ -89,12 +83,13 @@ TEST(Simulator, SameSeedGivesByteIdenticalOutput) {
   for (const auto& e : fs::recursive_directory_iterator(fs::path(a.path()) / "mav0")) {
     if (!e.is_regular_file()) continue;
     const fs::path rel = fs::relative(e.path(), a.path());
-    EXPECT_EQ(readAll(e.path()), readAll(fs::path(b.path()) / rel)) << rel;
+    EXPECT_EQ(test::readFile(e.path().string()), test::readFile((fs::path(b.path()) / rel).string())) << rel;
     ++files;
   }
   EXPECT_GT(files, 20u);
   const std::string img = "mav0/cam0/data/1600000001500000000.png";
-  EXPECT_NE(readAll(fs::path(a.path()) / img), readAll(fs::path(c.path()) / img)) << "another seed, another noise";
+  EXPECT_NE(test::readFile((fs::path(a.path()) / img).string()), test::readFile((fs::path(c.path()) / img).string()))
+      << "another seed, another noise";
 }
 
 TEST(Simulator, SkipKeepsEveryKPlusOneFrameAndTheImu) {

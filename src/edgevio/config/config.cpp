@@ -14,6 +14,18 @@ namespace edgevio {
 
 namespace {
 
+/// Throws for the first key of `map` not in `known`, listing the valid ones.
+void rejectUnknown(const YAML::Node& map, const std::set<std::string>& known, const std::string& path,
+                   const std::string& what, const std::string& prefix) {
+  for (const auto& kv : map) {
+    const std::string key = kv.first.as<std::string>();
+    if (known.count(key)) continue;
+    std::string valid;
+    for (const auto& k : known) valid += (valid.empty() ? "" : ", ") + k;
+    throw InputError(path, yamlLine(kv.first), "unknown " + what + " '" + prefix + key + "' (valid " + what + "s: " + valid + ")");
+  }
+}
+
 std::string shortestDouble(double v) {
   char buf[40];
   for (int precision = 6; precision <= 17; ++precision) {
@@ -91,17 +103,7 @@ class SectionReader {
       throw InputError(path_, yamlLine(n), "'" + section_ + "." + key + "': expected " + typeName(value));
   }
 
-  void rejectUnknownKeys() const {
-    for (const auto& kv : node_) {
-      const std::string key = kv.first.as<std::string>();
-      if (!known_.count(key)) {
-        std::string valid;
-        for (const auto& k : known_) valid += (valid.empty() ? "" : ", ") + k;
-        throw InputError(path_, yamlLine(kv.first),
-                         "unknown key '" + section_ + "." + key + "' (valid keys: " + valid + ")");
-      }
-    }
-  }
+  void rejectUnknownKeys() const { rejectUnknown(node_, known_, path_, "key", section_ + "."); }
 
  private:
   YAML::Node node_;
@@ -130,16 +132,7 @@ class ConfigReader {
     reader.rejectUnknownKeys();
   }
 
-  void rejectUnknownSections() const {
-    for (const auto& kv : root_) {
-      const std::string key = kv.first.as<std::string>();
-      if (!known_.count(key)) {
-        std::string valid;
-        for (const auto& k : known_) valid += (valid.empty() ? "" : ", ") + k;
-        throw InputError(path_, yamlLine(kv.first), "unknown section '" + key + "' (valid sections: " + valid + ")");
-      }
-    }
-  }
+  void rejectUnknownSections() const { rejectUnknown(root_, known_, path_, "section", ""); }
 
  private:
   YAML::Node root_;

@@ -1,0 +1,131 @@
+#include "edgevio/imu/preintegration.h"
+
+namespace edgevio::imu {
+
+using geometry::hat;
+using geometry::SO3;
+
+Preintegration::Preintegration(const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& n, double inflation)
+    : b_a_(b_a), b_g_(b_g) {
+  // Continuous densities σ [unit/√Hz]; the discrete variances σ²/δt (white)
+  // and σ²·δt (random walk) are formed in propagate() with each step's δt.
+  const double k2 = inflation * inflation;
+  Q_.block<3, 3>(0, 0) = Mat3::Identity() * n.accel_noise_density * n.accel_noise_density * k2;
+  Q_.block<3, 3>(3, 3) = Mat3::Identity() * n.gyro_noise_density * n.gyro_noise_density * k2;
+  Q_.block<3, 3>(6, 6) = Mat3::Identity() * n.accel_random_walk * n.accel_random_walk * k2;
+  Q_.block<3, 3>(9, 9) = Mat3::Identity() * n.gyro_random_walk * n.gyro_random_walk * k2;
+}
+
+void Preintegration::integrate(double dt, const Vec3& acc0, const Vec3& gyr0, const Vec3& acc1, const Vec3& gyr1) {
+  const Reading m{dt, acc0, gyr0, acc1, gyr1};
+  readings_.push_back(m);
+  propagate(m);
+}
+
+void Preintegration::repropagate(const Vec3& b_a, const Vec3& b_g) {
+  b_a_ = b_a;
+  b_g_ = b_g;
+  dt_sum_ = 0.0;
+  alpha_ = beta_ = Vec3::Zero();
+  gamma_ = SO3();
+  P_.setZero();
+  J_.setIdentity();
+  for (const Reading& m : readings_) propagate(m);
+}
+
+void Preintegration::propagate(const Reading& m) {
+  const double dt = m.dt;
+  const Vec3 w = 0.5 * (m.gyr0 + m.gyr1) - b_g_;  // ω̃, midpoint
+  const SO3 dR = SO3::exp(w * dt);
+  const SO3 gamma_next = gamma_ * dR;
+  const Vec3 a0 = gamma_ * (m.acc0 - b_a_), a1 = gamma_next * (m.acc1 - b_a_);
+  const Vec3 a_mid = 0.5 * (a0 + a1);
+  const Mat3 R = gamma_.matrix();
+  const Vec3 a_body = 0.5 * (m.acc0 + m.acc1) - b_a_;  // ã in the body frame of step k
+
+  // Error-state transition (Forster et al. 2017, eqs 58-62, with this step's
+  // rotation R = γ_k and midpoint readings):
+  //   δα' = δα + δβ δt − ½R hat(ã) δt² δθ − ½R δt² δb_a + ½R δt² n_a
+  //   δθ' = ΔRᵀ δθ − Jr δt δb_g + Jr δt n_g
+  //   δβ' = δβ − R hat(ã) δt δθ − R δt δb_a + R δt n_a
+  //   δb' = δb + δt n_b
+  Mat15 F = Mat15::Identity();
+  const Mat3 Jr = SO3::rightJacobian(w * dt);
+  F.block<3, 3>(kP, kR) = -0.5 * R * hat(a_body) * dt * dt;
+  F.block<3, 3>(kP, kV) = Mat3::Identity() * dt;
+  F.block<3, 3>(kP, kBa) = -0.5 * R * dt * dt;
+  F.block<3, 3>(kR, kR) = dR.matrix().transpose();
+  F.block<3, 3>(kR, kBg) = -Jr * dt;
+  F.block<3, 3>(kV, kR) = -R * hat(a_body) * dt;
+  F.block<3, 3>(kV, kBa) = -R * dt;
+  Eigen::Matrix<double, 15, 12> G = Eigen::Matrix<double, 15, 12>::Zero();
+  G.block<3, 3>(kP, 0) = 0.5 * R * dt * dt;
+  G.block<3, 3>(kR, 3) = Jr * dt;
+  G.block<3, 3>(kV, 0) = R * dt;
+  G.block<3, 3>(kBa, 6) = Mat3::Identity() * dt;
+  G.block<3, 3>(kBg, 9) = Mat3::Identity() * dt;
+  // Discrete noise: white noise variance σ²/δt, random-walk increments σ²/δt per unit time.
+  const Eigen::Matrix<double, 12, 12> Qd = Q_ / dt;
+  P_ = F * P_ * F.transpose() + G * Qd * G.transpose();
+  J_ = F * J_;
+
+  alpha_ += beta_ * dt + 0.5 * a_mid * dt * dt;
+  beta_ += a_mid * dt;
+  gamma_ = gamma_next;
+  dt_sum_ += dt;
+}
+
+Vec15 Preintegration::residual(const NavState& i, const NavState& j, Mat15* J_i, Mat15* J_j) const {
+  const double T = dt_sum_;
+  const Vec3 g = gravity();
+  const Vec3 dba = i.b_a - b_a_, dbg = i.b_g - b_g_;
+  const Mat3 Ja_ba = J_.block<3, 3>(kP, kBa), Ja_bg = J_.block<3, 3>(kP, kBg);
+  const Mat3 Jb_ba = J_.block<3, 3>(kV, kBa), Jb_bg = J_.block<3, 3>(kV, kBg);
+  const Mat3 Jg_bg = J_.block<3, 3>(kR, kBg);
+  // First-order bias correction of the deltas.
+  const Vec3 alpha = alpha_ + Ja_ba * dba + Ja_bg * dbg;
+  const Vec3 beta = beta_ + Jb_ba * dba + Jb_bg * dbg;
+  const SO3 gamma = gamma_ * SO3::exp(Jg_bg * dbg);
+
+  const Mat3 RiT = i.R_w_b.inverse().matrix();
+  const Vec3 dp = RiT * (j.p_w - i.p_w - i.v_w * T + 0.5 * g * T * T);
+  const Vec3 dv = RiT * (j.v_w - i.v_w + g * T);
+  const SO3 E = gamma.inverse() * i.R_w_b.inverse() * j.R_w_b;
+  Vec15 r;
+  r.segment<3>(kP) = dp - alpha;
+  r.segment<3>(kR) = E.log();
+  r.segment<3>(kV) = dv - beta;
+  r.segment<3>(kBa) = j.b_a - i.b_a;
+  r.segment<3>(kBg) = j.b_g - i.b_g;
+
+  const Mat3 JrInv = SO3::rightJacobianInverse(r.segment<3>(kR));
+  if (J_i) {
+    // (R Exp(δθ))ᵀ y ≈ Rᵀy + hat(Rᵀy) δθ; γ̂ᵀ Exp(−δθ) X = E Exp(−R_jᵀR_i δθ).
+    J_i->setZero();
+    J_i->block<3, 3>(kP, kP) = -RiT;
+    J_i->block<3, 3>(kP, kR) = hat(dp);
+    J_i->block<3, 3>(kP, kV) = -RiT * T;
+    J_i->block<3, 3>(kP, kBa) = -Ja_ba;
+    J_i->block<3, 3>(kP, kBg) = -Ja_bg;
+    J_i->block<3, 3>(kR, kR) = -JrInv * (j.R_w_b.inverse() * i.R_w_b).matrix();
+    // γ̂(δb_g + ε) ≈ γ̂·Exp(Jr(Jg δb_g)·Jg·ε): r_θ gains −Jr⁻¹(r_θ)·Eᵀ·Jr(Jg δb_g)·Jg·ε.
+    J_i->block<3, 3>(kR, kBg) = -JrInv * E.inverse().matrix() * SO3::rightJacobian(Jg_bg * dbg) * Jg_bg;
+    J_i->block<3, 3>(kV, kR) = hat(dv);
+    J_i->block<3, 3>(kV, kV) = -RiT;
+    J_i->block<3, 3>(kV, kBa) = -Jb_ba;
+    J_i->block<3, 3>(kV, kBg) = -Jb_bg;
+    J_i->block<3, 3>(kBa, kBa) = -Mat3::Identity();
+    J_i->block<3, 3>(kBg, kBg) = -Mat3::Identity();
+  }
+  if (J_j) {
+    J_j->setZero();
+    J_j->block<3, 3>(kP, kP) = RiT;
+    J_j->block<3, 3>(kR, kR) = JrInv;
+    J_j->block<3, 3>(kV, kV) = RiT;
+    J_j->block<3, 3>(kBa, kBa) = Mat3::Identity();
+    J_j->block<3, 3>(kBg, kBg) = Mat3::Identity();
+  }
+  return r;
+}
+
+}  // namespace edgevio::imu
