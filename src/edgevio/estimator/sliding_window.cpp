@@ -1,0 +1,208 @@
+#include "edgevio/estimator/sliding_window.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace edgevio::estimator {
+
+using geometry::SO3;
+using imu::NavState;
+using imu::Vec15;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+NavState boxplus(const NavState& x, const Eigen::Ref<const Vec15>& d) {
+  NavState o = x;
+  o.p_w += d.segment<3>(imu::kP);
+  o.R_w_b = x.R_w_b * SO3::exp(d.segment<3>(imu::kR));
+  o.v_w += d.segment<3>(imu::kV);
+  o.b_a += d.segment<3>(imu::kBa);
+  o.b_g += d.segment<3>(imu::kBg);
+  return o;
+}
+
+Vec15 boxminus(const NavState& x, const NavState& x0) {
+  Vec15 d;
+  d.segment<3>(imu::kP) = x.p_w - x0.p_w;
+  d.segment<3>(imu::kR) = (x0.R_w_b.inverse() * x.R_w_b).log();
+  d.segment<3>(imu::kV) = x.v_w - x0.v_w;
+  d.segment<3>(imu::kBa) = x.b_a - x0.b_a;
+  d.segment<3>(imu::kBg) = x.b_g - x0.b_g;
+  return d;
+}
+
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+/// Normal equations H δ = −g over a set of states (local indices via `slot`).
+struct Normal {
+  MatrixXd H;
+  VectorXd g;
+  double cost = 0.0;
+  explicit Normal(std::size_t n) : H(MatrixXd::Zero(15 * static_cast<long>(n), 15 * static_cast<long>(n))), g(VectorXd::Zero(15 * static_cast<long>(n))) {}
+
+  template <int R>
+  void add(const Eigen::Matrix<double, R, 1>& r, const Eigen::Matrix<double, R, R>& W,
+           const std::vector<std::pair<long, Eigen::Matrix<double, R, 15>>>& blocks) {
+    cost += 0.5 * r.dot(W * r);
+    for (const auto& [a, Ja] : blocks) {
+      g.segment<15>(15 * a) += Ja.transpose() * W * r;
+      for (const auto& [b, Jb] : blocks) H.block<15, 15>(15 * a, 15 * b) += Ja.transpose() * W * Jb;
+    }
+  }
+};
+
+imu::Mat15 inertialInformation(const imu::Preintegration& p) {
+  // The covariance is positive definite after one step; a tiny diagonal keeps
+  // the inverse finite for degenerate (zero-length) links.
+  const imu::Mat15 P = p.covariance() + imu::Mat15::Identity() * 1e-12;
+  return P.ldlt().solve(imu::Mat15::Identity());
+}
+
+/// Adds the factors selected by the predicates, with local indices from `slot`.
+template <class UseInertial, class UseVisual>
+void linearize(const Window& w, const SolverOptions& o, const std::map<std::size_t, long>& slot, bool with_prior,
+               UseInertial use_inertial, UseVisual use_visual, Normal* n) {
+  for (const InertialLink& l : w.inertial) {
+    if (!use_inertial(l)) continue;
+    imu::Mat15 Ji, Jj;
+    const Vec15 r = l.pre.residual(w.states[l.i].x, w.states[l.j].x, &Ji, &Jj);
+    n->add<15>(r, inertialInformation(l.pre), {{slot.at(l.i), Ji}, {slot.at(l.j), Jj}});
+  }
+  for (const VisualLink& l : w.visual) {
+    if (!use_visual(l)) continue;
+    Mat6x15 Jr, Jn;
+    const Vec6 r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c, &Jr, &Jn);
+    const Mat6 W = huberWeightedInformation(l.link.information, r, o.huber_translation_m, o.huber_rotation_deg * kDegToRad);
+    n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}});
+  }
+  if (with_prior && !w.prior.empty()) {
+    // ½δᵀHδ + bᵀδ at δ = x ⊟ x0: gradient b + Hδ, Hessian H (the Jacobian of
+    // ⊟ is taken as identity: first-estimate linearisation of the prior).
+    const std::size_t m = w.prior.states.size();
+    VectorXd d(15 * static_cast<long>(m));
+    for (std::size_t k = 0; k < m; ++k)
+      d.segment<15>(15 * static_cast<long>(k)) = boxminus(w.states[w.prior.states[k]].x, w.prior.x0[k]);
+    const VectorXd grad = w.prior.b + w.prior.H * d;
+    n->cost += 0.5 * d.dot(w.prior.H * d) + w.prior.b.dot(d);
+    for (std::size_t a = 0; a < m; ++a) {
+      const long sa = slot.at(w.prior.states[a]);
+      n->g.segment<15>(15 * sa) += grad.segment<15>(15 * static_cast<long>(a));
+      for (std::size_t b = 0; b < m; ++b)
+        n->H.block<15, 15>(15 * sa, 15 * slot.at(w.prior.states[b])) +=
+            w.prior.H.block<15, 15>(15 * static_cast<long>(a), 15 * static_cast<long>(b));
+    }
+  }
+}
+
+std::map<std::size_t, long> identitySlots(std::size_t n) {
+  std::map<std::size_t, long> s;
+  for (std::size_t i = 0; i < n; ++i) s[i] = static_cast<long>(i);
+  return s;
+}
+
+/// Perturbed Cholesky (METHOD.md §5): add λI, growing λ, until H + λI is positive definite.
+VectorXd perturbedCholeskySolve(const MatrixXd& H, const VectorXd& rhs, double lambda0) {
+  double lambda = lambda0 * std::max(1.0, H.diagonal().cwiseAbs().maxCoeff());
+  for (int attempt = 0; attempt < 20; ++attempt, lambda *= 10.0) {
+    const Eigen::LLT<MatrixXd> llt(H + lambda * MatrixXd::Identity(H.rows(), H.cols()));
+    if (llt.info() == Eigen::Success) return llt.solve(rhs);
+  }
+  return VectorXd::Zero(rhs.size());
+}
+
+double yawOf(const SO3& R) {
+  const Vec3 x = R * Vec3::UnitX();
+  return std::atan2(x.y(), x.x());
+}
+
+}  // namespace
+
+double windowCost(const Window& w, const SolverOptions& o) {
+  Normal n(w.states.size());
+  linearize(w, o, identitySlots(w.states.size()), true, [](const InertialLink&) { return true; },
+            [](const VisualLink&) { return true; }, &n);
+  return n.cost;
+}
+
+SolveSummary solve(Window* w, const SolverOptions& o) {
+  SolveSummary s;
+  const std::size_t N = w->states.size();
+  if (N == 0) return s;
+  const auto slots = identitySlots(N);
+  for (int it = 0; it < o.max_iterations; ++it) {
+    Normal n(N);
+    linearize(*w, o, slots, true, [](const InertialLink&) { return true; }, [](const VisualLink&) { return true; }, &n);
+    if (it == 0) s.initial_cost = n.cost;
+    const VectorXd step = perturbedCholeskySolve(n.H, -n.g, o.damping);
+    if (!step.allFinite()) break;
+    const NavState oldest = w->states.front().x;
+    for (std::size_t k = 0; k < N; ++k) w->states[k].x = boxplus(w->states[k].x, step.segment<15>(15 * static_cast<long>(k)));
+    if (o.fix_gauge) {
+      // Re-anchor: rotate about z and shift so the oldest state keeps its yaw
+      // and position; roll and pitch stay free (observable through gravity).
+      const SO3 Rz = SO3::exp(Vec3(0, 0, yawOf(oldest.R_w_b) - yawOf(w->states.front().x.R_w_b)));
+      const Vec3 p_new = w->states.front().x.p_w;
+      for (WindowState& st : w->states) {
+        st.x.R_w_b = Rz * st.x.R_w_b;
+        st.x.p_w = Rz * (st.x.p_w - p_new) + oldest.p_w;
+        st.x.v_w = Rz * st.x.v_w;
+      }
+    }
+    ++s.iterations;
+    if (step.norm() < o.min_step) break;
+  }
+  s.final_cost = windowCost(*w, o);
+  return s;
+}
+
+void marginalize(Window* w, std::size_t k, const SolverOptions& o) {
+  // The states that share a link with k, and those of the old prior.
+  std::vector<std::size_t> involved = {k};
+  const auto addState = [&](std::size_t i) {
+    if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
+  };
+  for (const auto& l : w->inertial)
+    if (l.i == k || l.j == k) addState(l.i == k ? l.j : l.i);
+  for (const auto& l : w->visual)
+    if (l.r == k || l.n == k) addState(l.r == k ? l.n : l.r);
+  for (std::size_t i : w->prior.states) addState(i);
+  std::map<std::size_t, long> slot;
+  for (std::size_t a = 0; a < involved.size(); ++a) slot[involved[a]] = static_cast<long>(a);
+
+  Normal n(involved.size());
+  linearize(*w, o, slot, true, [&](const InertialLink& l) { return l.i == k || l.j == k; },
+            [&](const VisualLink& l) { return l.r == k || l.n == k; }, &n);
+
+  // Schur complement on the first 15 rows/columns (state k), eqs 20-21.
+  const long m = 15, r = n.H.rows() - m;
+  const MatrixXd Hmm = n.H.topLeftCorner(m, m), Hrm = n.H.bottomLeftCorner(r, m), Hrr = n.H.bottomRightCorner(r, r);
+  const Eigen::LDLT<MatrixXd> Hmm_ldlt(Hmm + MatrixXd::Identity(m, m) * 1e-12);
+  MarginalPrior prior;
+  prior.H = Hrr - Hrm * Hmm_ldlt.solve(Hrm.transpose());
+  prior.H = 0.5 * (prior.H + prior.H.transpose());
+  prior.b = n.g.tail(r) - Hrm * Hmm_ldlt.solve(n.g.head(m));
+  for (std::size_t a = 1; a < involved.size(); ++a) {
+    prior.states.push_back(involved[a]);
+    prior.x0.push_back(w->states[involved[a]].x);
+  }
+
+  // Remove state k and every link that touched it; renumber.
+  const auto renumber = [k](std::size_t i) { return i > k ? i - 1 : i; };
+  std::vector<InertialLink> inertial;
+  for (auto& l : w->inertial)
+    if (l.i != k && l.j != k) inertial.push_back({renumber(l.i), renumber(l.j), l.pre});
+  std::vector<VisualLink> visual;
+  for (auto& l : w->visual)
+    if (l.r != k && l.n != k) visual.push_back({renumber(l.r), renumber(l.n), l.link});
+  for (auto& i : prior.states) i = renumber(i);
+  w->inertial = std::move(inertial);
+  w->visual = std::move(visual);
+  w->prior = std::move(prior);
+  w->states.erase(w->states.begin() + static_cast<long>(k));
+}
+
+}  // namespace edgevio::estimator

@@ -1,0 +1,198 @@
+// The window's maths: tracking-link Jacobians, and marginalisation: solving
+// with the prior must give the same states as the full problem (issue #6).
+#include "edgevio/estimator/sliding_window.h"
+#include "edgevio/estimator/external_check.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "common/test_support.h"
+#include "edgevio/io/calibration_io.h"
+#include "edgevio/sim/imu_synth.h"
+#include "edgevio/sim/random.h"
+#include "edgevio/sim/trajectory_source.h"
+
+namespace edgevio::estimator {
+namespace {
+
+using geometry::SE3;
+using geometry::SO3;
+using imu::NavState;
+
+TEST(Factors, RelativePoseJacobiansMatchNumeric) {
+  sim::Rng rng(3);
+  const auto v3 = [&](double s) -> Vec3 { return Vec3(rng.gaussian(), rng.gaussian(), rng.gaussian()) * s; };
+  const SE3 T_b_c = io::eurocDefaultRig().T_b_c[0];
+  for (int trial = 0; trial < 5; ++trial) {
+    NavState r, n;
+    r.R_w_b = SO3::exp(v3(1.0));
+    r.p_w = v3(1.0);
+    n.R_w_b = SO3::exp(v3(1.0));
+    n.p_w = v3(1.0);
+    const SE3 meas = SE3::exp((Vec6() << v3(0.5), v3(0.3)).finished());
+    Mat6x15 Jr, Jn;
+    relativePoseResidual(meas, r, n, T_b_c, &Jr, &Jn);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(15);
+    const auto fr = [&](const Eigen::VectorXd& d) -> Eigen::VectorXd { return relativePoseResidual(meas, boxplus(r, d), n, T_b_c); };
+    const auto fn = [&](const Eigen::VectorXd& d) -> Eigen::VectorXd { return relativePoseResidual(meas, r, boxplus(n, d), T_b_c); };
+    test::expectJacobianNear(Jr, test::numericJacobian(fr, zero, 1e-6), 1e-6, "dr/dx_r");
+    test::expectJacobianNear(Jn, test::numericJacobian(fn, zero, 1e-6), 1e-6, "dr/dx_n");
+  }
+}
+
+TEST(Factors, HuberScalesOnlyLargeBlocks) {
+  const Mat6 I = Mat6::Identity();
+  Vec6 small, big;
+  small << 0.01, 0, 0, 0.001, 0, 0;
+  big << 0.5, 0, 0, 0.001, 0, 0;
+  EXPECT_EQ(huberWeightedInformation(I, small, 0.1, 0.035), I);
+  const Mat6 W = huberWeightedInformation(I, big, 0.1, 0.035);
+  EXPECT_NEAR(W(0, 0), 0.1 / 0.5, 1e-12);
+  EXPECT_NEAR(W(4, 4), 1.0, 1e-12);
+}
+
+/// Seven states along the aggressive scenario at 10 Hz with noisy IMU and
+/// noisy relative-pose links (consecutive, and from state 0 as a keyframe).
+Window syntheticWindow(std::vector<NavState>* truth) {
+  const camera::StereoRig rig = io::eurocDefaultRig();
+  const io::Trajectory samples = sim::scenarioSamples("aggressive", 8.0, 1.0, rig.T_b_c[0]);
+  const sim::SplineTrajectory s =
+      sim::fitSpline(samples, sim::kScenarioStartNs, sim::kScenarioStartNs + 7000000000LL, 0.05, 0.1, "test");
+  sim::ImuSynthOptions io;
+  const sim::SynthesizedImu imu = sim::synthesizeImu(s, s.beginNs(), s.endNs(), io, 4);
+  sim::Rng rng(8);
+  const auto v3 = [&](double sd) -> Vec3 { return Vec3(rng.gaussian(), rng.gaussian(), rng.gaussian()) * sd; };
+  Window w;
+  w.T_b_c = rig.T_b_c[0];
+  const std::size_t first = 600, step = 20;  // 0.1 s apart
+  for (std::size_t k = 0; k < 7; ++k) {
+    const std::size_t idx = first + k * step;
+    const sim::KinematicState ks = s.evaluate(imu.samples[idx].t_ns);
+    NavState x;
+    x.R_w_b = ks.T_w_b.so3();
+    x.p_w = ks.T_w_b.translation();
+    x.v_w = ks.v_w;
+    x.b_a = imu.b_a[idx];
+    x.b_g = imu.b_g[idx];
+    truth->push_back(x);
+    // Start the estimate away from the truth.
+    NavState init = x;
+    init.p_w += v3(0.05);
+    init.R_w_b = x.R_w_b * SO3::exp(v3(0.02));
+    init.v_w += v3(0.05);
+    w.states.push_back({imu.samples[idx].t_ns, init, k == 0});
+    if (k > 0) {
+      imu::Preintegration p(Vec3::Zero(), Vec3::Zero(), camera::ImuNoise{});
+      for (std::size_t m = idx - step; m < idx; ++m)
+        p.integrate(static_cast<double>(imu.samples[m + 1].t_ns - imu.samples[m].t_ns) * 1e-9, imu.samples[m].accel,
+                    imu.samples[m].gyro, imu.samples[m + 1].accel, imu.samples[m + 1].gyro);
+      w.inertial.push_back({k - 1, k, p});
+    }
+  }
+  const auto camPose = [&](const NavState& x) { return SE3(x.R_w_b, x.p_w) * w.T_b_c; };
+  const double st = 0.005, sr = 0.003;
+  for (std::size_t k = 1; k < 7; ++k)
+    for (std::size_t r : {std::size_t{0}, k - 1}) {
+      if (r == 0 && k == 1) continue;
+      RelativePoseLink l;
+      Vec6 noise;
+      noise << v3(st), v3(sr);
+      l.T_nr = camPose((*truth)[k]).inverse() * camPose((*truth)[r]) * SE3::exp(noise);
+      l.information.setZero();
+      l.information.diagonal() << Vec3::Constant(1 / (st * st)), Vec3::Constant(1 / (sr * sr));
+      w.visual.push_back({r, k, l});
+    }
+  // Anchor state 0 with a strong prior (the gauge of this test problem).
+  w.prior.states = {0};
+  w.prior.x0 = {(*truth)[0]};
+  w.prior.H = Eigen::MatrixXd::Identity(15, 15) * 1e8;
+  w.prior.b = Eigen::VectorXd::Zero(15);
+  return w;
+}
+
+SolverOptions exactOptions() {
+  SolverOptions o;
+  o.max_iterations = 50;
+  o.min_step = 1e-12;
+  o.fix_gauge = false;  // the test prior fixes the gauge
+  o.huber_translation_m = o.huber_rotation_deg = 1e9;  // Huber off: a pure least-squares problem
+  return o;
+}
+
+TEST(SlidingWindow, SolveReachesTheNoiseLevel) {
+  std::vector<NavState> truth;
+  Window w = syntheticWindow(&truth);
+  const SolveSummary s = solve(&w, exactOptions());
+  EXPECT_LT(s.final_cost, s.initial_cost);
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    EXPECT_LT((w.states[k].x.p_w - truth[k].p_w).norm(), 0.02) << k;
+    EXPECT_LT(geometry::angle(w.states[k].x.R_w_b.inverse() * truth[k].R_w_b), 0.01) << k;
+  }
+}
+
+void expectMarginalizationEquivalent(std::size_t removed) {
+  std::vector<NavState> truth;
+  Window full = syntheticWindow(&truth);
+  const SolverOptions o = exactOptions();
+  solve(&full, o);  // converged full problem
+  Window reduced = full;
+  marginalize(&reduced, removed, o);
+  ASSERT_EQ(reduced.states.size(), full.states.size() - 1);
+  // Perturb the reduced problem's start so the solve has work to do.
+  for (auto& s : reduced.states) s.x.p_w += Vec3(0.01, -0.01, 0.005);
+  solve(&reduced, o);
+  double worst = 0.0;
+  for (std::size_t k = 0, r = 0; k < full.states.size(); ++k) {
+    if (k == removed) continue;
+    worst = std::max(worst, boxminus(reduced.states[r].x, full.states[k].x).norm());
+    ++r;
+  }
+  std::printf("marginalising state %zu: max state difference %.2e\n", removed, worst);
+  EXPECT_LT(worst, 1e-6);
+}
+
+TEST(SlidingWindow, MarginalisingAMiddleStateKeepsTheSolution) { expectMarginalizationEquivalent(3); }
+TEST(SlidingWindow, MarginalisingTheOldestStateKeepsTheSolution) { expectMarginalizationEquivalent(0); }
+
+TEST(SlidingWindow, GaugeKeepsTheOldestPositionAndYaw) {
+  std::vector<NavState> truth;
+  Window w = syntheticWindow(&truth);
+  w.prior = MarginalPrior{};  // no anchor: the gauge must hold it
+  const NavState before = w.states.front().x;
+  SolverOptions o;
+  solve(&w, o);
+  const NavState after = w.states.front().x;
+  EXPECT_LT((after.p_w - before.p_w).norm(), 1e-9);
+  const auto yaw = [](const SO3& R) { const Vec3 x = R * Vec3::UnitX(); return std::atan2(x.y(), x.x()); };
+  EXPECT_NEAR(yaw(after.R_w_b), yaw(before.R_w_b), 1e-9);
+}
+
+}  // namespace
+}  // namespace edgevio::estimator
+
+namespace edgevio::estimator {
+namespace {
+
+TEST(ExternalCheck, AcceptsTrueLinksAndRejectsACorruptedOne) {
+  std::vector<NavState> truth;
+  const Window w = syntheticWindow(&truth);
+  int accepted = 0;
+  for (const InertialLink& l : w.inertial) {
+    // The IMU prediction from the true state r (noisy IMU, 0.1 s).
+    const NavState pred = predictState(truth[l.i], l.pre);
+    const SE3 C_r = SE3(truth[l.i].R_w_b, truth[l.i].p_w) * w.T_b_c, C_n = SE3(truth[l.j].R_w_b, truth[l.j].p_w) * w.T_b_c;
+    const SE3 true_link = C_n.inverse() * C_r;
+    const ExternalCheckResult good = externalCheck(true_link, truth[l.i], pred, w.T_b_c, 3.0, 0.2);
+    accepted += good.accepted;
+    // A wrong minimum of the alignment: 10 deg and 30 cm off.
+    const SE3 corrupted = true_link * SE3(SO3::exp(Vec3(0, 0.1745, 0)), Vec3(0.3, 0, 0));
+    const ExternalCheckResult bad = externalCheck(corrupted, truth[l.i], pred, w.T_b_c, 3.0, 0.2);
+    EXPECT_FALSE(bad.accepted);
+    EXPECT_NEAR(bad.rotation_deg, 10.0, 0.5);
+  }
+  EXPECT_EQ(accepted, static_cast<int>(w.inertial.size()));
+}
+
+}  // namespace
+}  // namespace edgevio::estimator
