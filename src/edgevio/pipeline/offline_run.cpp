@@ -79,7 +79,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
     sample.T_w_b = t.T_w_b;
     trajectory.push_back(sample);
     ++s.frames;
-    s.keyframes += t.keyframe;
+    s.keyframes += t.keyframe + t.promoted_previous;
     s.self_check_failures += t.aligned && !t.self_check_passed;
     if (tracker.lost() && !s.failed) {
       s.failed = true;
@@ -93,7 +93,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
     char row[512];
     std::snprintf(row, sizeof row, "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
                   static_cast<long long>(t.t_ns), t.keyframe ? 1 : 0,
-                  t.keyframe_reason.empty() ? "-" : t.keyframe_reason.c_str(), t.aligned ? 1 : 0,
+                  t.keyframe_reason.empty() ? (t.promoted_previous ? "previous frame promoted" : "-") : t.keyframe_reason.c_str(), t.aligned ? 1 : 0,
                   t.self_check_passed ? 1 : 0, t.reference_points, t.alignment.points_used, t.alignment.visible_ratio,
                   t.alignment.iterations, t.alignment.mean_distance_px, t.canny_ms, t.dt_ms - t.lines_ms, t.lines_ms, t.bm_ms,
                   t.alignment.ms, total_ms);

@@ -35,6 +35,30 @@ void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right
   keyframe_ = std::move(kf);
 }
 
+AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, const SE3& T_w_b_pred, bool have_gyro,
+                                             bool* gyro_check_failed) const {
+  const SE3 T_nr_init = (T_w_b_pred * T_b_c_).inverse() * keyframe_->T_w_c;
+  AlignmentResult r = alignEdges(keyframe_->depth.points, pyr, T_nr_init, alignment_);
+  // Gyro check: the gyroscope's rotation over one frame is accurate to a
+  // fraction of a degree; an alignment far from it has converged to a wrong
+  // minimum (repetitive texture), so re-align from the prediction on the fine
+  // levels only, where the basin cannot reach the wrong one.
+  const auto rotationError = [&](const SE3& T_nr) {
+    return geometry::angle(T_nr.so3().inverse() * T_nr_init.so3()) * 180.0 / 3.14159265358979323846;
+  };
+  *gyro_check_failed = false;
+  if (have_gyro && rotationError(r.T_nr) > tracking_.gyro_check_deg) {
+    *gyro_check_failed = true;
+    const AlignmentResult fine =
+        alignEdges(keyframe_->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1);
+    const double ms = r.ms;
+    r = fine;
+    r.ms += ms;
+    if (rotationError(fine.T_nr) > tracking_.gyro_check_deg) r.self_check_passed = false;
+  }
+  return r;
+}
+
 FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>& R_prev_cur, const SE3& T_w_b_init) {
   FrameTrack out;
   out.t_ns = frame.t_ns;
@@ -57,27 +81,23 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>
   Vec3 p_pred = T_w_b_prev_.translation();
   if (tracking_.translation_prior == "constant_velocity") p_pred += T_w_b_prev_.translation() - T_w_b_prev2_.translation();
   const SE3 T_w_b_pred(R_pred, p_pred);
-  const SE3 T_nr_init = (T_w_b_pred * T_b_c_).inverse() * keyframe_->T_w_c;
-
   out.aligned = true;
   out.reference_points = static_cast<int>(keyframe_->depth.points.empty() ? 0 : keyframe_->depth.points[0].size());
-  out.alignment = alignEdges(keyframe_->depth.points, pyr, T_nr_init, alignment_);
-  // Gyro check: the gyroscope's rotation over one frame is accurate to a
-  // fraction of a degree; an alignment far from it has converged to a wrong
-  // minimum (repetitive texture), so re-align from the prediction on the fine
-  // levels only, where the basin cannot reach the wrong one.
-  const auto rotationError = [&](const SE3& T_nr) {
-    return geometry::angle(T_nr.so3().inverse() * T_nr_init.so3()) * 180.0 / 3.14159265358979323846;
-  };
-  const double elapsed_frames_ok = R_prev_cur ? 1.0 : 0.0;
-  if (elapsed_frames_ok > 0 && rotationError(out.alignment.T_nr) > tracking_.gyro_check_deg) {
-    out.gyro_check_failed = true;
-    const AlignmentResult fine =
-        alignEdges(keyframe_->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1);
-    const double ms = out.alignment.ms;
-    out.alignment = fine;
-    out.alignment.ms += ms;
-    if (rotationError(fine.T_nr) > tracking_.gyro_check_deg) out.alignment.self_check_passed = false;
+  out.alignment = alignToKeyframe(pyr, T_w_b_pred, R_prev_cur.has_value(), &out.gyro_check_failed);
+  if (!out.alignment.self_check_passed && previous_) {
+    // Motion since the keyframe was too large: the previous frame, tracked
+    // and closer to this one, becomes the keyframe, and alignment is retried.
+    FrameTrack promoted;
+    makeKeyframe(std::move(previous_->pyramid), previous_->right, previous_->T_w_b * T_b_c_, &promoted);
+    previous_.reset();
+    out.promoted_previous = true;
+    out.bm_ms += promoted.bm_ms;
+    out.reference_points = static_cast<int>(keyframe_->depth.points[0].size());
+    bool gyro_failed = false;
+    const double first_ms = out.alignment.ms;
+    out.alignment = alignToKeyframe(pyr, T_w_b_pred, R_prev_cur.has_value(), &gyro_failed);
+    out.alignment.ms += first_ms;
+    out.gyro_check_failed = out.gyro_check_failed || gyro_failed;
   }
   out.self_check_passed = out.alignment.self_check_passed;
 
@@ -98,7 +118,12 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>
     out.T_w_b = T_w_b_pred;
     out.keyframe_reason = "self check failed";
   }
-  if (!out.keyframe_reason.empty()) makeKeyframe(std::move(pyr), frame.right, out.T_w_b * T_b_c_, &out);
+  if (!out.keyframe_reason.empty()) {
+    makeKeyframe(std::move(pyr), frame.right, out.T_w_b * T_b_c_, &out);
+    previous_.reset();  // the keyframe is the previous frame now
+  } else {
+    previous_ = Previous{std::move(pyr), frame.right, out.T_w_b};
+  }
   T_w_b_prev2_ = T_w_b_prev_;
   T_w_b_prev_ = out.T_w_b;
   ++frames_;

@@ -29,6 +29,7 @@ struct FrameTrack {
   bool aligned = false;           ///< an alignment was attempted (not for the first frame)
   bool self_check_passed = false;
   bool gyro_check_failed = false; ///< the first alignment disagreed with the gyroscope (re-aligned)
+  bool promoted_previous = false; ///< alignment to the keyframe failed; the previous frame became a keyframe
   std::string keyframe_reason;    ///< why it became a keyframe
   AlignmentResult alignment;
   int reference_points = 0;       ///< level-0 reference points of the keyframe it was aligned to
@@ -56,6 +57,17 @@ class EdgeTracker {
     geometry::SE3 T_w_c;
   };
   void makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const geometry::SE3& T_w_c, FrameTrack* out);
+  /// Aligns `pyr` to the current keyframe from `T_w_b_pred`, with the gyro check.
+  AlignmentResult alignToKeyframe(const vision::EdgePyramid& pyr, const geometry::SE3& T_w_b_pred, bool have_gyro,
+                                  bool* gyro_check_failed) const;
+  /// The previous frame, kept so that it can become a keyframe when the current
+  /// frame fails to align to the old one (its pose is already known).
+  struct Previous {
+    vision::EdgePyramid pyramid;
+    cv::Mat right;
+    geometry::SE3 T_w_b;
+  };
+  std::optional<Previous> previous_;
 
   const camera::StereoRectifier& rect_;
   vision::VisionOptions vision_;
