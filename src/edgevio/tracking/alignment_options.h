@@ -13,6 +13,7 @@ struct AlignmentOptions {
   double cauchy_c2 = 1.5;                     ///< c² of the Cauchy weight [px²]
   int border_px = 2;                          ///< points must land in [b, W−1−b]x[b, H−1−b] [px]
   int min_points = 30;                        ///< fewer visible points at a level: the level is skipped [-]
+  int max_points = 3000;                      ///< at most this many reference points per level, evenly strided; 0 = all [-]
   double self_check_max_mean_distance_px = 5.0;  ///< self check: mean υ at level 0 at most this [px]
   double self_check_min_visible_ratio = 0.7;     ///< self check: at least this fraction of points in the image [-]
 
@@ -26,6 +27,7 @@ struct AlignmentOptions {
     v("cauchy_c2", cauchy_c2, "px^2", "c^2 of the Cauchy weight");
     v("border_px", border_px, "px", "points must project at least this far inside the image");
     v("min_points", min_points, "-", "a level with fewer visible points is skipped");
+    v("max_points", max_points, "-", "at most this many reference points per level (even stride); 0 = all");
     v("self_check_max_mean_distance_px", self_check_max_mean_distance_px, "px", "self check: mean distance at level 0");
     v("self_check_min_visible_ratio", self_check_min_visible_ratio, "-", "self check: fraction of points in the image");
   }

@@ -18,6 +18,7 @@ std::string AlignmentOptions::validate() const {
   if (!(cauchy_c2 > 0)) return "cauchy_c2: must be > 0";
   if (border_px < 1 || border_px > 20) return "border_px: in [1, 20]";
   if (min_points < 6) return "min_points: at least 6";
+  if (max_points < 0 || (max_points > 0 && max_points < min_points)) return "max_points: 0 (all) or at least min_points";
   if (!(self_check_max_mean_distance_px > 0)) return "self_check_max_mean_distance_px: must be > 0";
   if (!(self_check_min_visible_ratio >= 0 && self_check_min_visible_ratio <= 1)) return "self_check_min_visible_ratio: in [0, 1]";
   return {};
@@ -70,17 +71,23 @@ struct LevelStats {
   Vec6 g = Vec6::Zero();
   double sum_r = 0.0;
   int visible = 0;
+  int considered = 0;  ///< points evaluated (all, or the strided subset)
 };
 
 LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const SE3& T, const vision::EdgeLevel& level,
                       const AlignmentOptions& o, bool laplacian, bool finest) {
   LevelStats s;
+  // An even stride keeps the points spread over the image (and deterministic).
+  const std::size_t stride =
+      o.max_points > 0 && points.size() > static_cast<std::size_t>(o.max_points) ? (points.size() + static_cast<std::size_t>(o.max_points) - 1) / static_cast<std::size_t>(o.max_points) : 1;
   Jacobian16 J;
   double r = 0.0, dist = 0.0;
   // The distance field's consistent pull towards edges gives the wide basin
   // on coarse levels; the line residual refines on the finest one.
   const bool p2l = o.residual == "point_to_line" && finest;
-  for (const Eigen::Vector3f& pf : points) {
+  for (std::size_t idx = 0; idx < points.size(); idx += stride) {
+    const Eigen::Vector3f& pf = points[idx];
+    ++s.considered;
     if (!edgeResidual(pf.cast<double>(), T, level.camera, level.dt, o.border_px, &r, &J, p2l, &dist)) continue;
     // Weights from the distance V: the robust kernel judges how far the point
     // is from any edge, whichever residual is minimised.
@@ -141,7 +148,7 @@ AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref,
   if (!ref.empty() && !cur.levels.empty()) {
     const LevelStats s = accumulate(ref[0], T, cur.levels[0], o, laplacian, true);
     res.points_used = s.visible;
-    res.visible_ratio = ref[0].empty() ? 0.0 : static_cast<double>(s.visible) / static_cast<double>(ref[0].size());
+    res.visible_ratio = s.considered == 0 ? 0.0 : static_cast<double>(s.visible) / static_cast<double>(s.considered);
     res.mean_distance_px = s.visible > 0 ? s.sum_r / s.visible : std::numeric_limits<double>::infinity();
     const Eigen::LDLT<Mat6> ldlt(s.H);
     if (s.visible >= o.min_points && ldlt.info() == Eigen::Success && ldlt.isPositive())
