@@ -99,7 +99,6 @@ void BM_SimulateStereoFrames(benchmark::State& state) {
   r.scenario = "figure8";
   r.start_s = 2.0;
   r.duration_s = 8.0;
-  r.quiet = true;
   sim::SimOptions o;
   std::size_t frames = 0;
   double render = 0, write = 0, setup = 0, loop = 0;

@@ -37,11 +37,4 @@ class Rng {
   std::uint64_t state_;
 };
 
-/// Standard normal from a hash value (for per-pixel noise).
-inline float gaussianFromHash(std::uint64_t h) {
-  const double u1 = (static_cast<double>(h >> 40) + 0.5) * 0x1.0p-24;
-  const double u2 = static_cast<double>(h & 0xFFFFFF) * 0x1.0p-24;
-  return static_cast<float>(std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2));
-}
-
 }  // namespace edgevio::sim

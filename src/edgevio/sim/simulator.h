@@ -28,7 +28,6 @@ struct SimRequest {
   double drop_rate = 0.0;       ///< probability that a cam1 frame is dropped
   int skip = 0;                 ///< keep every (skip+1)-th frame
   std::string calib;            ///< calibration (ASL folder or Kalibr YAML); empty: EuRoC
-  bool quiet = false;
 };
 
 struct SimSummary {

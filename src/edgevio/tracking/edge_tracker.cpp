@@ -72,7 +72,6 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>
     out.keyframe_reason = "first frame";
     makeKeyframe(std::move(pyr), frame.right, T_w_b_init * T_b_c_, &out);
     T_w_b_prev_ = T_w_b_prev2_ = out.T_w_b;
-    ++frames_;
     return out;
   }
 
@@ -126,7 +125,6 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>
   }
   T_w_b_prev2_ = T_w_b_prev_;
   T_w_b_prev_ = out.T_w_b;
-  ++frames_;
   return out;
 }
 

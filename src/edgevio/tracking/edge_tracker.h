@@ -76,7 +76,6 @@ class EdgeTracker {
   geometry::SE3 T_b_c_;  // body → rectified left camera
   std::optional<Keyframe> keyframe_;
   geometry::SE3 T_w_b_prev_, T_w_b_prev2_;
-  int frames_ = 0;
   int consecutive_failures_ = 0;
 };
 

@@ -14,7 +14,7 @@ DistanceTransform::DistanceTransform(const cv::Mat& edges, const cv::Mat& image)
   cv::distanceTransform(background, dist_, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   if (!image.empty()) {
     const auto t0 = std::chrono::steady_clock::now();
-    buildLines(edges, image, background);
+    buildLines(edges, image);
     lines_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   gu_.create(dist_.size(), CV_32FC1);
@@ -35,7 +35,7 @@ DistanceTransform::DistanceTransform(const cv::Mat& edges, const cv::Mat& image)
   }
 }
 
-void DistanceTransform::buildLines(const cv::Mat& edges, const cv::Mat& image, const cv::Mat& /*background*/) {
+void DistanceTransform::buildLines(const cv::Mat& edges, const cv::Mat& image) {
   const int W = edges.cols, H = edges.rows;
   cv::Mat gx, gy, mag;
   cv::Sobel(image, gx, CV_32F, 1, 0, 3);

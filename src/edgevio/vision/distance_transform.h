@@ -38,7 +38,7 @@ class DistanceTransform {
   void nearestLine(double u, double v, Vec2* point, Vec2* normal) const;
 
  private:
-  void buildLines(const cv::Mat& edges, const cv::Mat& image, const cv::Mat& background);
+  void buildLines(const cv::Mat& edges, const cv::Mat& image);
   cv::Mat dist_, gu_, gv_;     // CV_32FC1
   cv::Mat nearest_;            // CV_32SC1: index into lines_ of the nearest edge pixel
   std::vector<Eigen::Vector4f> lines_;  // (x, y, nx, ny) per edge pixel
