@@ -49,16 +49,17 @@ bool edgeResidual(const Vec3& P, const SE3& T, const vision::LevelCamera& c, con
   Jacobian26 Juv;
   if (!projectWithJacobian(P, T, c, &uv, J ? &Juv : nullptr)) return false;
   if (uv.x() < border || uv.y() < border || uv.x() > c.width - 1 - border || uv.y() > c.height - 1 - border) return false;
-  float v, gu, gv;
-  dt.valueAndGradient(uv.x(), uv.y(), &v, &gu, &gv);
-  if (distance) *distance = v;
   if (point_to_line && dt.hasLines()) {
+    if (distance) *distance = dt.value(uv.x(), uv.y());
     Vec2 e, n;
     dt.nearestLine(uv.x(), uv.y(), &e, &n);
     *r = (uv - e).dot(n);
     if (J) *J = n.transpose() * Juv;
     return true;
   }
+  float v, gu, gv;
+  dt.valueAndGradient(uv.x(), uv.y(), &v, &gu, &gv);
+  if (distance) *distance = v;
   *r = v;
   if (J) *J = gu * Juv.row(0) + gv * Juv.row(1);
   return true;

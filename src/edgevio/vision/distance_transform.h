@@ -2,7 +2,8 @@
 // The distance transform of an edge map (METHOD.md §3): V(u) is the Euclidean
 // distance in pixels from u to the nearest edge pixel (exact: Felzenszwalb &
 // Huttenlocher 2012, via OpenCV's DIST_MASK_PRECISE), its gradient ∇V by
-// central differences, both sampled bilinearly. V is the paper's residual.
+// central differences (evaluated at the sampled pixels only), both sampled
+// bilinearly. V is the paper's residual.
 //
 // Given the image, it also keeps for every pixel its nearest edge as a line:
 // the edge pixel refined to sub-pixel along its gradient (parabola through the
@@ -39,7 +40,7 @@ class DistanceTransform {
 
  private:
   void buildLines(const cv::Mat& edges, const cv::Mat& image);
-  cv::Mat dist_, gu_, gv_;     // CV_32FC1
+  cv::Mat dist_;               // CV_32FC1
   cv::Mat nearest_;            // CV_32SC1: index into lines_ of the nearest edge pixel
   std::vector<Eigen::Vector4f> lines_;  // (x, y, nx, ny) per edge pixel
   double lines_ms_ = 0.0;
