@@ -10,15 +10,17 @@ namespace edgevio::cli {
 
 int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
   if (a.realtime) return notImplemented("run --realtime", "the pipeline issue", err);
-  if (a.mode != "edge-only") return notImplemented("run --mode " + a.mode, "the estimator and loop-closure issues", err);
+  if (a.mode == "edge+loop" || a.mode == "edge+imu+loop") return notImplemented("run --mode " + a.mode, "the loop-closure issue", err);
   try {
     const Config config = a.config.empty() ? Config{} : loadConfig(a.config);
     pipeline::RunRequest r{a.dataset, a.out, a.mode, a.skip};
     Progress progress("frames", Progress::stderrIsTerminal());
     const pipeline::RunSummary s = pipeline::runOffline(
-        r, config, [&](std::size_t done, std::size_t total, double seq_s) { progress.update(done, total, seq_s); });
+        r, config, [&](std::size_t done, std::size_t total, double seq_s) { progress.update(done, total, seq_s); },
+        [&](const std::string& event) { err << "warning: " << event << "\n"; });
     out << "mode " << a.mode << ": " << s.frames << " frames, " << s.keyframes << " keyframes, "
-        << s.self_check_failures << " self-check failures, " << s.wall_s << " s wall, real-time factor "
+        << s.self_check_failures << " self-check failures, " << s.external_check_rejections
+        << " external-check rejections, " << s.estimator_resets << " estimator resets, " << s.wall_s << " s wall, real-time factor "
         << s.realtime_factor << (s.failed ? ", FAILED: " + s.failure : std::string()) << "\n"
         << "wrote " << a.out << "/{trajectory_tum.txt, trajectory.csv, frames.csv, summary.json, config.yaml}\n";
     return s.failed ? kExitError : kExitOk;

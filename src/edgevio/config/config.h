@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "edgevio/camera/rectification_options.h"
+#include "edgevio/estimator/estimator_options.h"
 #include "edgevio/eval/eval_options.h"
 #include "edgevio/io/dataset_options.h"
 #include "edgevio/sim/sim_options.h"
@@ -24,6 +25,7 @@ struct Config {
   vision::VisionOptions vision;
   tracking::AlignmentOptions alignment;
   tracking::TrackingOptions tracking;
+  estimator::EstimatorOptions estimator;
   eval::EvalOptions eval;
   sim::SimOptions sim;
 
@@ -34,6 +36,7 @@ struct Config {
     v("vision", vision, "front-end image processing: pyramid, Canny, stereo depth (METHOD.md §3)");
     v("alignment", alignment, "edge alignment: Gauss-Newton, robust weights, self check (METHOD.md §3)");
     v("tracking", tracking, "keyframe policy, initial guess, static initialisation (METHOD.md §3, §5)");
+    v("estimator", estimator, "sliding-window estimator: IMU links, external check, two-way marginalisation (METHOD.md §4, §5)");
     v("eval", eval, "trajectory evaluation: association, alignment, metrics (METHOD.md §8)");
     v("sim", sim, "simulator: motion, scene, camera effects, IMU (edgevio simulate)");
   }

@@ -1,5 +1,7 @@
 #include "edgevio/estimator/sliding_window.h"
 
+#include "edgevio/estimator/block_cholesky.h"
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
@@ -48,9 +50,16 @@ struct Normal {
   void add(const Eigen::Matrix<double, R, 1>& r, const Eigen::Matrix<double, R, R>& W,
            const std::vector<std::pair<long, Eigen::Matrix<double, R, 15>>>& blocks) {
     cost += 0.5 * r.dot(W * r);
-    for (const auto& [a, Ja] : blocks) {
-      g.segment<15>(15 * a) += Ja.transpose() * W * r;
-      for (const auto& [b, Jb] : blocks) H.block<15, 15>(15 * a, 15 * b) += Ja.transpose() * W * Jb;
+    for (std::size_t u = 0; u < blocks.size(); ++u) {
+      const auto& [a, Ja] = blocks[u];
+      const Eigen::Matrix<double, 15, R> JaT_W = Ja.transpose() * W;
+      g.segment<15>(15 * a) += JaT_W * r;
+      for (std::size_t v = u; v < blocks.size(); ++v) {
+        const auto& [b, Jb] = blocks[v];
+        const imu::Mat15 Hab = JaT_W * Jb;
+        H.block<15, 15>(15 * a, 15 * b) += Hab;
+        if (v != u) H.block<15, 15>(15 * b, 15 * a) += Hab.transpose();
+      }
     }
   }
 };
@@ -104,19 +113,31 @@ std::map<std::size_t, long> identitySlots(std::size_t n) {
   return s;
 }
 
-/// Perturbed Cholesky (METHOD.md §5): add λI, growing λ, until H + λI is positive definite.
+/// Perturbed Cholesky (METHOD.md §5): add λI, growing λ, until H + λI is
+/// positive definite; the factorisation exploits the window's envelope.
 VectorXd perturbedCholeskySolve(const MatrixXd& H, const VectorXd& rhs, double lambda0) {
   double lambda = lambda0 * std::max(1.0, H.diagonal().cwiseAbs().maxCoeff());
-  for (int attempt = 0; attempt < 20; ++attempt, lambda *= 10.0) {
-    const Eigen::LLT<MatrixXd> llt(H + lambda * MatrixXd::Identity(H.rows(), H.cols()));
-    if (llt.info() == Eigen::Success) return llt.solve(rhs);
-  }
+  VectorXd x;
+  for (int attempt = 0; attempt < 20; ++attempt, lambda *= 10.0)
+    if (solveEnvelopeCholesky(H, lambda, rhs, &x)) return x;
   return VectorXd::Zero(rhs.size());
 }
 
-double yawOf(const SO3& R) {
-  const Vec3 x = R * Vec3::UnitX();
-  return std::atan2(x.y(), x.x());
+/// Yaw as the heading of one body axis, atan2(y, x) of R·a: it satisfies
+/// yaw(Rz(ψ)·R) = yaw(R) + ψ exactly. The axis is the body axis of the
+/// anchor state that is the most horizontal, so the heading is well defined at
+/// any attitude (a body pointing straight up has a horizontal y axis).
+Vec3 mostHorizontalAxis(const SO3& R) {
+  const Mat3 M = R.matrix();
+  int best = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(M(2, k)) < std::abs(M(2, best))) best = k;
+  return Vec3::Unit(best);
+}
+
+double heading(const SO3& R, const Vec3& body_axis) {
+  const Vec3 d = R * body_axis;
+  return std::atan2(d.y(), d.x());
 }
 
 }  // namespace
@@ -144,7 +165,8 @@ SolveSummary solve(Window* w, const SolverOptions& o) {
     if (o.fix_gauge) {
       // Re-anchor: rotate about z and shift so the oldest state keeps its yaw
       // and position; roll and pitch stay free (observable through gravity).
-      const SO3 Rz = SO3::exp(Vec3(0, 0, yawOf(oldest.R_w_b) - yawOf(w->states.front().x.R_w_b)));
+      const Vec3 axis = mostHorizontalAxis(oldest.R_w_b);
+      const SO3 Rz = SO3::exp(Vec3(0, 0, heading(oldest.R_w_b, axis) - heading(w->states.front().x.R_w_b, axis)));
       const Vec3 p_new = w->states.front().x.p_w;
       for (WindowState& st : w->states) {
         st.x.R_w_b = Rz * st.x.R_w_b;

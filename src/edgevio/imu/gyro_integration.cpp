@@ -8,30 +8,39 @@ namespace edgevio::imu {
 using geometry::SO3;
 
 namespace {
-Vec3 gyroAt(const io::ImuSample& a, const io::ImuSample& b, std::int64_t t) {
+io::ImuSample interpolate(const io::ImuSample& a, const io::ImuSample& b, std::int64_t t) {
   const double w = b.t_ns == a.t_ns ? 0.0 : static_cast<double>(t - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns);
-  return (1.0 - w) * a.gyro + w * b.gyro;
+  io::ImuSample s;
+  s.t_ns = t;
+  s.gyro = (1.0 - w) * a.gyro + w * b.gyro;
+  s.accel = (1.0 - w) * a.accel + w * b.accel;
+  return s;
 }
 }  // namespace
 
-bool integrateGyro(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::int64_t t1, const Vec3& bias, SO3* R) {
-  *R = SO3();
+bool forEachImuInterval(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::int64_t t1,
+                        const std::function<void(double, const Vec3&, const Vec3&, const Vec3&, const Vec3&)>& f) {
   if (imu.size() < 2 || t1 <= t0 || imu.front().t_ns > t0 || imu.back().t_ns < t1) return false;
   auto it = std::upper_bound(imu.begin(), imu.end(), t0, [](std::int64_t t, const io::ImuSample& s) { return t < s.t_ns; });
   // it: first sample after t0; the interval [t0, t1] is cut at every sample inside it.
-  std::int64_t t = t0;
-  Vec3 w_prev = gyroAt(*(it - 1), *it, t0);
-  SO3 acc;
-  while (t < t1) {
+  io::ImuSample prev = interpolate(*(it - 1), *it, t0);
+  while (prev.t_ns < t1) {
     const std::int64_t t_next = std::min(it->t_ns, t1);
-    const Vec3 w_next = t_next == it->t_ns ? it->gyro : gyroAt(*(it - 1), *it, t_next);
-    acc = acc * SO3::exp((0.5 * (w_prev + w_next) - bias) * (static_cast<double>(t_next - t) * 1e-9));
-    t = t_next;
-    w_prev = w_next;
+    const io::ImuSample next = t_next == it->t_ns ? *it : interpolate(*(it - 1), *it, t_next);
+    f(static_cast<double>(next.t_ns - prev.t_ns) * 1e-9, prev.accel, prev.gyro, next.accel, next.gyro);
+    prev = next;
     if (t_next == it->t_ns && it + 1 != imu.end()) ++it;
   }
-  *R = acc;
   return true;
+}
+
+bool integrateGyro(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::int64_t t1, const Vec3& bias, SO3* R) {
+  SO3 acc;
+  const bool ok = forEachImuInterval(imu, t0, t1, [&](double dt, const Vec3&, const Vec3& w0, const Vec3&, const Vec3& w1) {
+    acc = acc * SO3::exp((0.5 * (w0 + w1) - bias) * dt);
+  });
+  *R = acc;
+  return ok;
 }
 
 StaticInit staticInitialization(const std::vector<io::ImuSample>& imu, std::int64_t t0, double window_s,

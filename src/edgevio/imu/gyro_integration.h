@@ -5,12 +5,20 @@
 // (METHOD.md §5: roll and pitch from the mean accelerometer reading, gyro bias
 // from the mean gyro reading, yaw 0).
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "edgevio/geometry/so3.h"
 #include "edgevio/io/imu_sample.h"
 
 namespace edgevio::imu {
+
+/// Calls f(dt_s, acc0, gyr0, acc1, gyr1) for each interval between
+/// consecutive readings that cuts [t0, t1], the end readings interpolated
+/// linearly at t0 and t1 (the one place the IMU stream is cut at frame
+/// times). Returns false, calling nothing, without IMU coverage of [t0, t1].
+bool forEachImuInterval(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns,
+                        const std::function<void(double, const Vec3&, const Vec3&, const Vec3&, const Vec3&)>& f);
 
 /// R_{b(t0) b(t1)}: body rotation from t0 to t1, Π exp((ω̄ − b_g)·Δt) with ω̄ the
 /// mean of consecutive samples (midpoint rule), samples clipped to [t0, t1] by

@@ -1,5 +1,7 @@
 #include "edgevio/imu/preintegration.h"
 
+#include "edgevio/imu/gyro_integration.h"
+
 namespace edgevio::imu {
 
 using geometry::hat;
@@ -126,6 +128,19 @@ Vec15 Preintegration::residual(const NavState& i, const NavState& j, Mat15* J_i,
     J_j->block<3, 3>(kBg, kBg) = Mat3::Identity();
   }
   return r;
+}
+
+std::optional<Preintegration> preintegrate(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::int64_t t1,
+                                           const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise, double inflation,
+                                           double max_gap_s) {
+  Preintegration p(b_a, b_g, noise, inflation);
+  bool gap = false;
+  const bool covered = forEachImuInterval(imu, t0, t1, [&](double dt, const Vec3& a0, const Vec3& w0, const Vec3& a1, const Vec3& w1) {
+    gap = gap || dt > max_gap_s;
+    p.integrate(dt, a0, w0, a1, w1);
+  });
+  if (!covered || gap) return std::nullopt;
+  return p;
 }
 
 }  // namespace edgevio::imu

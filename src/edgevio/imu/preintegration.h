@@ -15,10 +15,12 @@
 // first-order bias correction) are propagated with the discrete error-state
 // matrices F, G (eq 18; Forster et al. 2017, eqs 58-62), from P = 0, J = I.
 // When the bias estimate moves by more than a threshold, repropagate().
+#include <optional>
 #include <vector>
 
 #include "edgevio/camera/calibration.h"
 #include "edgevio/geometry/so3.h"
+#include "edgevio/io/imu_sample.h"
 
 namespace edgevio::imu {
 
@@ -78,6 +80,13 @@ class Preintegration {
   Mat15 P_ = Mat15::Zero(), J_ = Mat15::Identity();
   std::vector<Reading> readings_;
 };
+
+/// Preintegration of the readings between t0 and t1 (cut by
+/// forEachImuInterval); nullopt without IMU coverage of [t0, t1] or when two
+/// consecutive readings are more than max_gap_s apart (a gap is not bridged).
+std::optional<Preintegration> preintegrate(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns,
+                                           const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise,
+                                           double inflation = 1.0, double max_gap_s = 1.0);
 
 /// Gravity in the world frame as the propagation subtracts it (METHOD.md §2).
 inline Vec3 gravity() { return Vec3(0.0, 0.0, 9.81); }

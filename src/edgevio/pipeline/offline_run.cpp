@@ -12,23 +12,21 @@
 #include "edgevio/imu/gyro_integration.h"
 #include "edgevio/io/euroc_dataset.h"
 #include "edgevio/io/trajectory_io.h"
-#include "edgevio/tracking/edge_tracker.h"
+#include "edgevio/pipeline/odometry.h"
 
 namespace edgevio::pipeline {
 
 namespace fs = std::filesystem;
 
-RunSummary runOffline(const RunRequest& req, const Config& config, const RunProgress& progress) {
+RunSummary runOffline(const RunRequest& req, const Config& config, const RunProgress& progress, const EventLog& event_log) {
   const auto wall_start = std::chrono::steady_clock::now();
-  if (req.mode != "edge-only")
-    throw InputError("mode '" + req.mode + "' is not implemented yet (edge-only is; edge+imu and the loop modes follow)");
+  if (const std::string bad_mode = checkMode(req.mode); !bad_mode.empty()) throw InputError(bad_mode);
   if (req.skip < 0) throw InputError("--skip must be >= 0");
   const std::string invalid = config.validate();
   if (!invalid.empty()) throw InputError("invalid configuration: " + invalid);
 
   io::EurocDataset dataset(req.dataset, config.dataset);
   const camera::StereoRectifier rect(dataset.calibration(), config.rectification);
-  tracking::EdgeTracker tracker(rect, config.vision, config.alignment, config.tracking);
   const auto& pairs = dataset.stereoPairs();
   if (pairs.empty()) throw InputError(req.dataset, 0, "no stereo pairs to process");
 
@@ -37,7 +35,9 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   std::ofstream frames_csv(fs::path(req.out_dir) / "frames.csv");
   if (!frames_csv) throw InputError(req.out_dir, 0, "cannot write to the output folder");
   frames_csv << "timestamp_ns,keyframe,keyframe_reason,aligned,self_check,reference_points,points_used,visible_ratio,"
-                "iterations,mean_distance_px,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,total_ms\n";
+                "iterations,mean_distance_px,external_check,external_rotation_deg,external_translation_m,est_iterations,"
+                "est_initial_cost,est_final_cost,marginalized,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,solve_ms,marginalize_ms,"
+                "total_ms\n";
   {
     std::ofstream cfg(fs::path(req.out_dir) / "config.yaml");
     writeConfig(cfg, config);
@@ -48,11 +48,11 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
       imu::staticInitialization(dataset.imu(), pairs.front().t_ns, config.tracking.static_init_window_s,
                                 config.tracking.static_accel_std_max, config.tracking.static_gyro_std_max);
 
+  Odometry odometry(req.mode, config, dataset.calibration(), rect, dataset.imu(), init);
   RunSummary s;
   io::Trajectory trajectory;
   const std::size_t step = static_cast<std::size_t>(req.skip) + 1;
   const std::size_t total = (pairs.size() + step - 1) / step;
-  std::int64_t t_prev = -1;
   std::size_t done = 0;
   for (std::size_t i = 0; i < pairs.size(); i += step) {
     const auto f0 = std::chrono::steady_clock::now();
@@ -65,38 +65,51 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
     tracking::StereoFrame frame;
     frame.t_ns = images->t_ns;
     rect.rectify(images->left, images->right, &frame.left, &frame.right);
-    std::optional<geometry::SO3> dR;
-    if (t_prev >= 0) {
-      geometry::SO3 R;
-      if (imu::integrateGyro(dataset.imu(), t_prev, frame.t_ns, init.gyro_bias, &R)) dR = R;
-    }
-    const tracking::FrameTrack t = tracker.track(frame, dR, geometry::SE3(init.R_w_b, Vec3::Zero()));
-    t_prev = frame.t_ns;
+    const FrameResult fr = odometry.process(frame);
+    const tracking::FrameTrack& t = fr.track;
     const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count();
 
     io::TrajectorySample sample;
     sample.t_ns = t.t_ns;
-    sample.T_w_b = t.T_w_b;
+    sample.T_w_b = fr.T_w_b;
+    if (fr.state) {
+      sample.v_w = fr.state->v_w;
+      sample.b_g = fr.state->b_g;
+      sample.b_a = fr.state->b_a;
+    }
     trajectory.push_back(sample);
     ++s.frames;
-    s.keyframes += t.keyframe + t.promoted_previous;
+    s.keyframes += t.keyframe + t.promoted_previous + fr.forced_keyframe;
     s.self_check_failures += t.aligned && !t.self_check_passed;
-    if (tracker.lost() && !s.failed) {
+    s.external_check_rejections += fr.external_check == "rejected";
+    if (!fr.event.empty()) {
+      char at[64];
+      std::snprintf(at, sizeof at, "t = %.3f s: ", static_cast<double>(t.t_ns - pairs.front().t_ns) * 1e-9);
+      s.events.push_back(at + fr.event);
+      if (event_log) event_log(s.events.back());
+    }
+    if (odometry.lost() && !s.failed) {
       s.failed = true;
       s.failure = "lost track: " + std::to_string(config.tracking.lost_after_failures) +
                   " consecutive self-check failures ending at t = " + std::to_string(static_cast<double>(t.t_ns) * 1e-9) + " s";
     }
-    if (!t.T_w_b.translation().allFinite() && !s.failed) {
+    if (!fr.T_w_b.translation().allFinite() && !s.failed) {
       s.failed = true;
       s.failure = "diverged: non-finite pose";
     }
-    char row[512];
-    std::snprintf(row, sizeof row, "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
-                  static_cast<long long>(t.t_ns), t.keyframe ? 1 : 0,
-                  t.keyframe_reason.empty() ? (t.promoted_previous ? "previous frame promoted" : "-") : t.keyframe_reason.c_str(), t.aligned ? 1 : 0,
-                  t.self_check_passed ? 1 : 0, t.reference_points, t.alignment.points_used, t.alignment.visible_ratio,
-                  t.alignment.iterations, t.alignment.mean_distance_px, t.canny_ms, t.dt_ms - t.lines_ms, t.lines_ms, t.bm_ms,
-                  t.alignment.ms, total_ms);
+    const estimator::EstimatorUpdate& e = fr.estimator;
+    char row[768];
+    std::snprintf(row, sizeof row,
+                  "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%s,%.3f,%.4f,%d,%.6g,%.6g,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
+                  static_cast<long long>(t.t_ns), t.keyframe || fr.forced_keyframe ? 1 : 0,
+                  t.keyframe_reason.empty() ? (t.promoted_previous ? "previous frame promoted"
+                                               : fr.forced_keyframe ? "forced by the estimator" : "-")
+                                            : t.keyframe_reason.c_str(),
+                  t.aligned ? 1 : 0, t.self_check_passed ? 1 : 0, t.reference_points, t.alignment.points_used,
+                  t.alignment.visible_ratio, t.alignment.iterations, t.alignment.mean_distance_px,
+                  fr.external_check.c_str(), fr.external.rotation_deg, fr.external.translation_m, e.iterations,
+                  e.initial_cost, e.final_cost, e.marginalized.c_str(), t.canny_ms, t.dt_ms - t.lines_ms, t.lines_ms,
+                  t.bm_ms, t.alignment.ms, e.solve_ms, e.marginalize_ms, total_ms);
     frames_csv << row;
     if (progress) progress(done, total, static_cast<double>(t.t_ns - pairs.front().t_ns) * 1e-9);
   }
@@ -105,6 +118,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   io::writeTrajectoryTum((fs::path(req.out_dir) / "trajectory_tum.txt").string(), trajectory);
   io::writeTrajectoryEuroc((fs::path(req.out_dir) / "trajectory.csv").string(), trajectory);
 
+  s.estimator_resets = odometry.resets();
   s.duration_s = static_cast<double>(pairs.back().t_ns - pairs.front().t_ns) * 1e-9;
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   s.realtime_factor = s.wall_s > 0 ? s.duration_s / s.wall_s : 0.0;
@@ -119,7 +133,8 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   j.key("frames").value(s.frames);
   j.key("keyframes").value(s.keyframes);
   j.key("self_check_failures").value(s.self_check_failures);
-  j.key("external_check_rejections").value(0);
+  j.key("external_check_rejections").value(s.external_check_rejections);
+  j.key("estimator_resets").value(odometry.resets());
   j.key("loop_closures").value(0);
   j.key("skipped_unreadable_frames").value(s.skipped_unreadable);
   j.key("static_initialization").value(init.is_static);
@@ -128,6 +143,9 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   j.key("duration_s").value(s.duration_s);
   j.key("wall_s").value(s.wall_s);
   j.key("realtime_factor").value(s.realtime_factor);
+  j.key("events").beginArray();
+  for (const auto& ev : s.events) j.value(ev);
+  j.endArray();
   j.key("warnings").beginArray();
   for (const auto& w : dataset.warnings()) j.value(w);
   j.endArray();

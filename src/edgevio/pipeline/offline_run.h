@@ -4,11 +4,13 @@
 // bit for bit. Writes to the output folder:
 //   trajectory_tum.txt, trajectory.csv  the causal body pose of every processed frame
 //   frames.csv                          per frame: keyframe, self check, points, iterations,
-//                                       mean distance, milliseconds per component
+//                                       mean distance, external check, estimator iterations,
+//                                       cost, marginalised state, milliseconds per component
 //   summary.json                        mode, counts, failed, wall time, real-time factor
 //   config.yaml                         the configuration used
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "edgevio/config/config.h"
 
@@ -23,6 +25,8 @@ struct RunRequest {
 
 struct RunSummary {
   std::size_t frames = 0, keyframes = 0, self_check_failures = 0, skipped_unreadable = 0;
+  std::size_t external_check_rejections = 0, estimator_resets = 0;
+  std::vector<std::string> events;  ///< resets and IMU gaps, "t = … s: what"
   bool failed = false;
   std::string failure;
   double wall_s = 0.0, duration_s = 0.0, realtime_factor = 0.0;
@@ -31,7 +35,11 @@ struct RunSummary {
 /// (frames done, frames total, sequence seconds done)
 using RunProgress = std::function<void(std::size_t, std::size_t, double)>;
 
+/// Receives each event (estimator reset, IMU gap) as it happens.
+using EventLog = std::function<void(const std::string&)>;
+
 /// Throws InputError for bad input; a run that loses track returns failed = true.
-RunSummary runOffline(const RunRequest& request, const Config& config, const RunProgress& progress = {});
+RunSummary runOffline(const RunRequest& request, const Config& config, const RunProgress& progress = {},
+                      const EventLog& event_log = {});
 
 }  // namespace edgevio::pipeline

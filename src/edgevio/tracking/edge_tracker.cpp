@@ -25,11 +25,13 @@ EdgeTracker::EdgeTracker(const camera::StereoRectifier& rectifier, const vision:
                          const AlignmentOptions& alignment, const TrackingOptions& tracking)
     : rect_(rectifier), vision_(vision), alignment_(alignment), tracking_(tracking), T_b_c_(rectifier.T_b_rect(0)) {}
 
-void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const SE3& T_w_c, FrameTrack* out) {
+void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const SE3& T_w_c, std::int64_t t_ns,
+                               FrameTrack* out) {
   Keyframe kf;
   kf.depth = vision::computeKeyframeDepth(pyramid, vision::downsample2(right_full), rect_.baseline(), vision_);
   kf.pyramid = std::move(pyramid);
   kf.T_w_c = T_w_c;
+  kf.t_ns = t_ns;
   out->bm_ms = kf.depth.bm_ms;
   out->keyframe = true;
   keyframe_ = std::move(kf);
@@ -60,41 +62,68 @@ AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, con
 }
 
 FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>& R_prev_cur, const SE3& T_w_b_init) {
+  if (!keyframe_) return track(frame, T_w_b_init, false);
+  // Prediction: rotation from the gyroscope, translation from the previous estimate(s).
+  const SO3 R_pred = T_w_b_prev_.so3() * (R_prev_cur ? *R_prev_cur : SO3());
+  Vec3 p_pred = T_w_b_prev_.translation();
+  if (tracking_.translation_prior == "constant_velocity") p_pred += T_w_b_prev_.translation() - T_w_b_prev2_.translation();
+  return track(frame, SE3(R_pred, p_pred), R_prev_cur.has_value());
+}
+
+void EdgeTracker::correctPoses(const std::function<std::optional<SE3>(std::int64_t)>& pose_of) {
+  if (keyframe_)
+    if (const auto T = pose_of(keyframe_->t_ns)) keyframe_->T_w_c = *T * T_b_c_;
+  if (previous_)
+    if (const auto T = pose_of(previous_->t_ns)) previous_->T_w_b = *T;
+}
+
+bool EdgeTracker::promoteLastFrame() {
+  if (!previous_ || previous_->t_ns != last_t_ns_) return false;
+  FrameTrack promoted;
+  makeKeyframe(std::move(previous_->pyramid), previous_->right, previous_->T_w_b * T_b_c_, previous_->t_ns, &promoted);
+  previous_.reset();
+  return true;
+}
+
+std::optional<std::int64_t> EdgeTracker::keyframeTime() const {
+  if (!keyframe_) return std::nullopt;
+  return keyframe_->t_ns;
+}
+
+FrameTrack EdgeTracker::track(const StereoFrame& frame, const SE3& T_w_b_pred, bool rotation_reliable) {
   FrameTrack out;
   out.t_ns = frame.t_ns;
+  last_t_ns_ = frame.t_ns;
   vision::EdgePyramid pyr = vision::buildEdgePyramid(frame.left, rect_.rectifiedCamera(), vision_);
   out.canny_ms = pyr.canny_ms;
   out.dt_ms = pyr.dt_ms;
   out.lines_ms = pyr.lines_ms;
 
   if (!keyframe_) {
-    out.T_w_b = T_w_b_init;
+    out.T_w_b = T_w_b_pred;
     out.keyframe_reason = "first frame";
-    makeKeyframe(std::move(pyr), frame.right, T_w_b_init * T_b_c_, &out);
+    makeKeyframe(std::move(pyr), frame.right, T_w_b_pred * T_b_c_, frame.t_ns, &out);
     T_w_b_prev_ = T_w_b_prev2_ = out.T_w_b;
     return out;
   }
 
-  // Prediction: rotation from the gyroscope, translation from the previous estimate(s).
-  const SO3 R_pred = T_w_b_prev_.so3() * (R_prev_cur ? *R_prev_cur : SO3());
-  Vec3 p_pred = T_w_b_prev_.translation();
-  if (tracking_.translation_prior == "constant_velocity") p_pred += T_w_b_prev_.translation() - T_w_b_prev2_.translation();
-  const SE3 T_w_b_pred(R_pred, p_pred);
   out.aligned = true;
   out.reference_points = static_cast<int>(keyframe_->depth.points.empty() ? 0 : keyframe_->depth.points[0].size());
-  out.alignment = alignToKeyframe(pyr, T_w_b_pred, R_prev_cur.has_value(), &out.gyro_check_failed);
+  out.reference_t_ns = keyframe_->t_ns;
+  out.alignment = alignToKeyframe(pyr, T_w_b_pred, rotation_reliable, &out.gyro_check_failed);
   if (!out.alignment.self_check_passed && previous_) {
     // Motion since the keyframe was too large: the previous frame, tracked
     // and closer to this one, becomes the keyframe, and alignment is retried.
     FrameTrack promoted;
-    makeKeyframe(std::move(previous_->pyramid), previous_->right, previous_->T_w_b * T_b_c_, &promoted);
+    makeKeyframe(std::move(previous_->pyramid), previous_->right, previous_->T_w_b * T_b_c_, previous_->t_ns, &promoted);
     previous_.reset();
     out.promoted_previous = true;
+    out.reference_t_ns = keyframe_->t_ns;
     out.bm_ms += promoted.bm_ms;
     out.reference_points = static_cast<int>(keyframe_->depth.points[0].size());
     bool gyro_failed = false;
     const double first_ms = out.alignment.ms;
-    out.alignment = alignToKeyframe(pyr, T_w_b_pred, R_prev_cur.has_value(), &gyro_failed);
+    out.alignment = alignToKeyframe(pyr, T_w_b_pred, rotation_reliable, &gyro_failed);
     out.alignment.ms += first_ms;
     out.gyro_check_failed = out.gyro_check_failed || gyro_failed;
   }
@@ -118,10 +147,10 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>
     out.keyframe_reason = "self check failed";
   }
   if (!out.keyframe_reason.empty()) {
-    makeKeyframe(std::move(pyr), frame.right, out.T_w_b * T_b_c_, &out);
+    makeKeyframe(std::move(pyr), frame.right, out.T_w_b * T_b_c_, frame.t_ns, &out);
     previous_.reset();  // the keyframe is the previous frame now
   } else {
-    previous_ = Previous{std::move(pyr), frame.right, out.T_w_b};
+    previous_ = Previous{std::move(pyr), frame.right, out.T_w_b, frame.t_ns};
   }
   T_w_b_prev2_ = T_w_b_prev_;
   T_w_b_prev_ = out.T_w_b;

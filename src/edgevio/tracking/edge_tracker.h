@@ -5,6 +5,7 @@
 // causal: the pose of a frame is known when the frame has been processed.
 #include <opencv2/core.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -33,6 +34,7 @@ struct FrameTrack {
   std::string keyframe_reason;    ///< why it became a keyframe
   AlignmentResult alignment;
   int reference_points = 0;       ///< level-0 reference points of the keyframe it was aligned to
+  std::int64_t reference_t_ns = -1;  ///< timestamp of that keyframe (the tracking link's reference)
   double canny_ms = 0, dt_ms = 0, lines_ms = 0, bm_ms = 0;  ///< dt_ms includes lines_ms
 };
 
@@ -47,6 +49,20 @@ class EdgeTracker {
   FrameTrack track(const StereoFrame& frame, const std::optional<geometry::SO3>& R_prev_cur,
                    const geometry::SE3& T_w_b_init = geometry::SE3());
 
+  /// The same with a full-pose prediction (the IMU's, METHOD.md §5): the
+  /// initial guess of the alignment, the pose of a first frame, and the
+  /// frame's pose when the alignment fails. `rotation_reliable` enables the
+  /// gyro check against the predicted rotation.
+  FrameTrack track(const StereoFrame& frame, const geometry::SE3& T_w_b_pred, bool rotation_reliable);
+
+  /// Replaces the poses of the keyframe and of the last frame with better
+  /// estimates (the window's), looked up by timestamp.
+  void correctPoses(const std::function<std::optional<geometry::SE3>(std::int64_t)>& pose_of);
+  /// Makes the last tracked frame the keyframe (the estimator rejected its
+  /// link, or the old keyframe left the window). False when it already is.
+  bool promoteLastFrame();
+  std::optional<std::int64_t> keyframeTime() const;
+
   int consecutiveFailures() const { return consecutive_failures_; }
   bool lost() const { return consecutive_failures_ >= tracking_.lost_after_failures; }
 
@@ -55,8 +71,10 @@ class EdgeTracker {
     vision::EdgePyramid pyramid;
     vision::KeyframeDepth depth;
     geometry::SE3 T_w_c;
+    std::int64_t t_ns = 0;
   };
-  void makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const geometry::SE3& T_w_c, FrameTrack* out);
+  void makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const geometry::SE3& T_w_c, std::int64_t t_ns,
+                    FrameTrack* out);
   /// Aligns `pyr` to the current keyframe from `T_w_b_pred`, with the gyro check.
   AlignmentResult alignToKeyframe(const vision::EdgePyramid& pyr, const geometry::SE3& T_w_b_pred, bool have_gyro,
                                   bool* gyro_check_failed) const;
@@ -66,6 +84,7 @@ class EdgeTracker {
     vision::EdgePyramid pyramid;
     cv::Mat right;
     geometry::SE3 T_w_b;
+    std::int64_t t_ns = 0;
   };
   std::optional<Previous> previous_;
 
@@ -77,6 +96,7 @@ class EdgeTracker {
   std::optional<Keyframe> keyframe_;
   geometry::SE3 T_w_b_prev_, T_w_b_prev2_;
   int consecutive_failures_ = 0;
+  std::int64_t last_t_ns_ = -1;
 };
 
 }  // namespace edgevio::tracking

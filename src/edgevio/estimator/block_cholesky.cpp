@@ -1,0 +1,135 @@
+#include "edgevio/estimator/block_cholesky.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <vector>
+
+namespace edgevio::estimator {
+
+namespace {
+constexpr int B = kStateBlock;
+using Block = Eigen::Matrix<double, B, B>;
+using BlockVec = Eigen::Matrix<double, B, 1>;
+}  // namespace
+
+namespace {
+
+using Order = std::vector<long>;  // order[k]: the block placed at position k
+
+/// first[k]: the first position whose block couples to the block at position k.
+std::vector<long> envelope(const std::vector<std::vector<long>>& adjacency, const Order& order) {
+  const long nb = static_cast<long>(order.size());
+  std::vector<long> position(static_cast<std::size_t>(nb)), first(static_cast<std::size_t>(nb));
+  for (long k = 0; k < nb; ++k) position[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])] = k;
+  for (long k = 0; k < nb; ++k) {
+    long f = k;
+    for (long j : adjacency[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])])
+      f = std::min(f, position[static_cast<std::size_t>(j)]);
+    first[static_cast<std::size_t>(k)] = f;
+  }
+  return first;
+}
+
+/// Factorisation work of an envelope: Σ_k (k − f(k))² block products.
+long envelopeCost(const std::vector<long>& first) {
+  long c = 0;
+  for (std::size_t k = 0; k < first.size(); ++k) c += (static_cast<long>(k) - first[k]) * (static_cast<long>(k) - first[k]);
+  return c;
+}
+
+/// Reverse Cuthill-McKee (George & Liu §4.3): breadth-first from a block of
+/// least degree, neighbours by increasing degree, reversed. It puts a hub (a
+/// keyframe tracked by many frames) after its spokes, where it makes no fill.
+Order reverseCuthillMcKee(const std::vector<std::vector<long>>& adjacency) {
+  const long nb = static_cast<long>(adjacency.size());
+  const auto degree = [&](long i) { return adjacency[static_cast<std::size_t>(i)].size(); };
+  Order order;
+  std::vector<bool> seen(static_cast<std::size_t>(nb), false);
+  while (static_cast<long>(order.size()) < nb) {
+    long start = -1;
+    for (long i = 0; i < nb; ++i)
+      if (!seen[static_cast<std::size_t>(i)] && (start < 0 || degree(i) < degree(start))) start = i;
+    seen[static_cast<std::size_t>(start)] = true;
+    std::size_t head = order.size();
+    order.push_back(start);
+    for (; head < order.size(); ++head) {
+      std::vector<long> next;
+      for (long j : adjacency[static_cast<std::size_t>(order[head])])
+        if (!seen[static_cast<std::size_t>(j)]) {
+          seen[static_cast<std::size_t>(j)] = true;
+          next.push_back(j);
+        }
+      std::stable_sort(next.begin(), next.end(), [&](long a, long b) { return degree(a) < degree(b); });
+      order.insert(order.end(), next.begin(), next.end());
+    }
+  }
+  std::reverse(order.begin(), order.end());
+  return order;
+}
+
+}  // namespace
+
+bool solveEnvelopeCholesky(const Eigen::MatrixXd& H, double lambda, const Eigen::VectorXd& rhs, Eigen::VectorXd* x) {
+  const long nb = H.rows() / B;
+  std::vector<std::vector<long>> adjacency(static_cast<std::size_t>(nb));
+  for (long i = 0; i < nb; ++i)
+    for (long j = 0; j < i; ++j)
+      if ((H.block<B, B>(B * i, B * j).array() != 0.0).any()) {
+        adjacency[static_cast<std::size_t>(i)].push_back(j);
+        adjacency[static_cast<std::size_t>(j)].push_back(i);
+      }
+  // The cheapest of three orderings: time order, its reverse, and RCM.
+  Order order(static_cast<std::size_t>(nb));
+  for (long k = 0; k < nb; ++k) order[static_cast<std::size_t>(k)] = k;
+  std::vector<long> first = envelope(adjacency, order);
+  for (Order candidate : {Order(order.rbegin(), order.rend()), reverseCuthillMcKee(adjacency)}) {
+    std::vector<long> f = envelope(adjacency, candidate);
+    if (envelopeCost(f) < envelopeCost(first)) {
+      order = std::move(candidate);
+      first = std::move(f);
+    }
+  }
+  const auto Hb = [&](long k, long l) {
+    return H.block<B, B>(B * order[static_cast<std::size_t>(k)], B * order[static_cast<std::size_t>(l)]);
+  };
+  // L row by row (positions k in `order`); row k stores blocks first[k] .. k.
+  std::vector<std::vector<Block>> L(static_cast<std::size_t>(nb));
+  const auto Lb = [&](long i, long j) -> Block& {
+    return L[static_cast<std::size_t>(i)][static_cast<std::size_t>(j - first[static_cast<std::size_t>(i)])];
+  };
+  for (long i = 0; i < nb; ++i) {
+    const long fi = first[static_cast<std::size_t>(i)];
+    L[static_cast<std::size_t>(i)].resize(static_cast<std::size_t>(i - fi + 1));
+    for (long j = fi; j <= i; ++j) {
+      Block S = Hb(i, j);
+      for (long k = std::max(fi, first[static_cast<std::size_t>(j)]); k < j; ++k) S.noalias() -= Lb(i, k) * Lb(j, k).transpose();
+      if (j < i) {
+        // L_ij L_jjᵀ = S
+        Lb(i, j) = Lb(j, j).triangularView<Eigen::Lower>().solve(S.transpose()).transpose();
+      } else {
+        S.diagonal().array() += lambda;
+        const Eigen::LLT<Block> llt(S);
+        if (llt.info() != Eigen::Success) return false;
+        Lb(i, i) = llt.matrixL();
+      }
+    }
+  }
+  // L y = P rhs, then Lᵀ z = y (column-oriented, inside the envelope), x = Pᵀ z.
+  Eigen::VectorXd y(rhs.size());
+  for (long k = 0; k < nb; ++k) y.segment<B>(B * k) = rhs.segment<B>(B * order[static_cast<std::size_t>(k)]);
+  for (long i = 0; i < nb; ++i) {
+    BlockVec yi = y.segment<B>(B * i);
+    for (long j = first[static_cast<std::size_t>(i)]; j < i; ++j) yi.noalias() -= Lb(i, j) * y.segment<B>(B * j);
+    y.segment<B>(B * i) = Lb(i, i).triangularView<Eigen::Lower>().solve(yi);
+  }
+  for (long i = nb - 1; i >= 0; --i) {
+    const BlockVec xi = Lb(i, i).transpose().triangularView<Eigen::Upper>().solve(BlockVec(y.segment<B>(B * i)));
+    y.segment<B>(B * i) = xi;
+    for (long j = first[static_cast<std::size_t>(i)]; j < i; ++j) y.segment<B>(B * j).noalias() -= Lb(i, j).transpose() * xi;
+  }
+  x->resize(rhs.size());
+  for (long k = 0; k < nb; ++k) x->segment<B>(B * order[static_cast<std::size_t>(k)]) = y.segment<B>(B * k);
+  return x->allFinite();
+}
+
+}  // namespace edgevio::estimator
