@@ -10,7 +10,6 @@ namespace edgevio::cli {
 
 int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
   if (a.realtime) return notImplemented("run --realtime", "the pipeline issue", err);
-  if (a.mode == "edge+loop" || a.mode == "edge+imu+loop") return notImplemented("run --mode " + a.mode, "the loop-closure issue", err);
   try {
     const Config config = a.config.empty() ? Config{} : loadConfig(a.config);
     pipeline::RunRequest r{a.dataset, a.out, a.mode, a.skip};
@@ -20,7 +19,7 @@ int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
         [&](const std::string& event) { err << "warning: " << event << "\n"; });
     out << "mode " << a.mode << ": " << s.frames << " frames, " << s.keyframes << " keyframes, "
         << s.self_check_failures << " self-check failures, " << s.external_check_rejections
-        << " external-check rejections, " << s.estimator_resets << " estimator resets, " << s.wall_s << " s wall, real-time factor "
+        << " external-check rejections, " << s.loop_closures << " loop closures, " << s.estimator_resets << " estimator resets, " << s.wall_s << " s wall, real-time factor "
         << s.realtime_factor << (s.failed ? ", FAILED: " + s.failure : std::string()) << "\n"
         << "wrote " << a.out << "/{trajectory_tum.txt, trajectory.csv, frames.csv, summary.json, config.yaml}\n";
     return s.failed ? kExitError : kExitOk;

@@ -12,6 +12,7 @@
 #include "edgevio/estimator/estimator_options.h"
 #include "edgevio/eval/eval_options.h"
 #include "edgevio/io/dataset_options.h"
+#include "edgevio/loop/loop_options.h"
 #include "edgevio/sim/sim_options.h"
 #include "edgevio/tracking/alignment_options.h"
 #include "edgevio/tracking/tracking_options.h"
@@ -26,6 +27,7 @@ struct Config {
   tracking::AlignmentOptions alignment;
   tracking::TrackingOptions tracking;
   estimator::EstimatorOptions estimator;
+  loop::LoopOptions loop;
   eval::EvalOptions eval;
   sim::SimOptions sim;
 
@@ -37,6 +39,7 @@ struct Config {
     v("alignment", alignment, "edge alignment: Gauss-Newton, robust weights, self check (METHOD.md §3)");
     v("tracking", tracking, "keyframe policy, initial guess, static initialisation (METHOD.md §3, §5)");
     v("estimator", estimator, "sliding-window estimator: IMU links, external check, two-way marginalisation (METHOD.md §4, §5)");
+    v("loop", loop, "local loop closure between keyframes in the window (METHOD.md §6)");
     v("eval", eval, "trajectory evaluation: association, alignment, metrics (METHOD.md §8)");
     v("sim", sim, "simulator: motion, scene, camera effects, IMU (edgevio simulate)");
   }

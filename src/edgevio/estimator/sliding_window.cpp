@@ -166,7 +166,9 @@ SolveSummary solve(Window* w, const SolverOptions& o) {
       // Re-anchor: rotate about z and shift so the oldest state keeps its yaw
       // and position; roll and pitch stay free (observable through gravity).
       const Vec3 axis = mostHorizontalAxis(oldest.R_w_b);
-      const SO3 Rz = SO3::exp(Vec3(0, 0, heading(oldest.R_w_b, axis) - heading(w->states.front().x.R_w_b, axis)));
+      const SO3 Rz = o.gauge_full_rotation
+                         ? oldest.R_w_b * w->states.front().x.R_w_b.inverse()
+                         : SO3::exp(Vec3(0, 0, heading(oldest.R_w_b, axis) - heading(w->states.front().x.R_w_b, axis)));
       const Vec3 p_new = w->states.front().x.p_w;
       for (WindowState& st : w->states) {
         st.x.R_w_b = Rz * st.x.R_w_b;

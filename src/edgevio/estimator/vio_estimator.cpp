@@ -34,9 +34,15 @@ std::string EstimatorOptions::validate() const {
   return {};
 }
 
-VioEstimator::VioEstimator(const EstimatorOptions& options, const camera::ImuNoise& noise, const SE3& T_b_c)
-    : options_(options), noise_(noise) {
+VioEstimator::VioEstimator(const EstimatorOptions& options, const camera::ImuNoise& noise, const SE3& T_b_c, bool inertial)
+    : options_(options), noise_(noise), inertial_(inertial) {
   window_.T_b_c = T_b_c;
+}
+
+SolverOptions VioEstimator::solverOptions() const {
+  SolverOptions o = options_.solver();
+  o.gauge_full_rotation = !inertial_;
+  return o;
 }
 
 void VioEstimator::initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known) {
@@ -96,20 +102,39 @@ void VioEstimator::addState(std::int64_t t_ns, imu::Preintegration pre, const st
   window_.inertial.push_back({i, i + 1, std::move(pre)});
 }
 
+void VioEstimator::addStateWithoutImu(std::int64_t t_ns, const SE3& T_w_b) {
+  imu::NavState x;
+  x.R_w_b = T_w_b.so3();
+  x.p_w = T_w_b.translation();
+  predicted_newest_ = x;
+  window_.states.push_back({t_ns, x, false});
+}
+
+bool VioEstimator::addVisualLink(std::size_t r, std::size_t n, const SE3& T_nr, const Mat6& covariance) {
+  RelativePoseLink link;
+  link.T_nr = T_nr;
+  const Mat6 P = options_.visual_covariance_scale * covariance;
+  link.information = P.ldlt().solve(Mat6::Identity());
+  link.information = 0.5 * (link.information + link.information.transpose());
+  if (!link.information.allFinite()) return false;
+  window_.visual.push_back({r, n, link});
+  return true;
+}
+
+bool VioEstimator::addLoopLink(std::int64_t t_ref_ns, std::int64_t t_new_ns, const SE3& T_nr, const Mat6& covariance) {
+  const auto r = indexOf(t_ref_ns), n = indexOf(t_new_ns);
+  return r && n && *r != *n && addVisualLink(*r, *n, T_nr, covariance);
+}
+
 std::optional<ExternalCheckResult> VioEstimator::offerTrackingLink(std::int64_t t_ref_ns, const SE3& T_nr,
                                                                    const Mat6& covariance) {
   const auto r = indexOf(t_ref_ns);
   if (!r || *r + 1 == window_.states.size()) return std::nullopt;
-  const ExternalCheckResult check = externalCheck(T_nr, window_.states[*r].x, predicted_newest_, window_.T_b_c,
-                                                  options_.external_check_rotation_deg, options_.external_check_translation_m);
-  if (check.accepted) {
-    RelativePoseLink link;
-    link.T_nr = T_nr;
-    const Mat6 P = options_.visual_covariance_scale * covariance;
-    link.information = P.ldlt().solve(Mat6::Identity());
-    link.information = 0.5 * (link.information + link.information.transpose());
-    if (link.information.allFinite()) window_.visual.push_back({*r, window_.states.size() - 1, link});
-  }
+  ExternalCheckResult check;
+  if (inertial_)
+    check = externalCheck(T_nr, window_.states[*r].x, predicted_newest_, window_.T_b_c, options_.external_check_rotation_deg,
+                          options_.external_check_translation_m);
+  if (check.accepted) addVisualLink(*r, window_.states.size() - 1, T_nr, covariance);
   return check;
 }
 
@@ -140,7 +165,7 @@ EstimatorUpdate VioEstimator::optimize(bool alignment_good, std::optional<std::i
         (xi.b_g - l.pre.linearizationBg()).norm() > options_.repropagate_gyro_bias)
       l.pre.repropagate(xi.b_a, xi.b_g);
   }
-  const SolveSummary s = solve(&window_, options_.solver());
+  const SolveSummary s = solve(&window_, solverOptions());
   u.iterations = s.iterations;
   u.initial_cost = s.initial_cost;
   u.final_cost = s.final_cost;
@@ -165,7 +190,7 @@ EstimatorUpdate VioEstimator::optimize(bool alignment_good, std::optional<std::i
   }
   const std::size_t victim = front ? second : 0;
   u.keyframe_left_window = kf && *kf == victim;
-  marginalize(&window_, victim, options_.solver());
+  marginalize(&window_, victim, solverOptions());
   u.marginalized = front ? "front" : "back";
   u.marginalize_ms = msSince(t1);
   return u;

@@ -9,7 +9,9 @@
 //          (‖Δp‖/front_translation_m + angle/front_rotation_deg < 1);
 //   back:  otherwise remove the oldest state.
 // States are identified by their timestamps, so the tracker and the
-// estimator share no indices.
+// estimator share no indices. Without the IMU (mode edge+loop) the same
+// window is a pose graph: states are joined by tracking and loop links only,
+// and the gauge holds the oldest state's whole pose.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -33,7 +35,9 @@ struct EstimatorUpdate {
 
 class VioEstimator {
  public:
-  VioEstimator(const EstimatorOptions& options, const camera::ImuNoise& noise, const geometry::SE3& T_b_c);
+  VioEstimator(const EstimatorOptions& options, const camera::ImuNoise& noise, const geometry::SE3& T_b_c,
+               bool inertial = true);
+  bool inertial() const { return inertial_; }
 
   /// Starts a new window with one state. `velocity_known`: x's velocity and
   /// gyro bias are known (a static start measured them: zero velocity and the
@@ -55,9 +59,17 @@ class VioEstimator {
   /// the IMU prediction (then at `pose` when given: the tracker's estimate).
   void addState(std::int64_t t_ns, imu::Preintegration pre, const std::optional<geometry::SE3>& T_w_b = std::nullopt);
 
+  /// Appends a state at the given pose without an inertial link (no IMU).
+  void addStateWithoutImu(std::int64_t t_ns, const geometry::SE3& T_w_b);
+
+  /// A loop-closure link between two keyframes in the window (METHOD.md §6);
+  /// false when either has left it.
+  bool addLoopLink(std::int64_t t_ref_ns, std::int64_t t_new_ns, const geometry::SE3& T_nr, const Mat6& covariance);
+
   /// Offers a tracking link from the state at t_ref to the newest state,
   /// measured T_nr with the alignment covariance. It enters only if the
-  /// external check passes against the IMU prediction of the newest state.
+  /// external check passes against the IMU prediction of the newest state
+  /// (without the IMU it always enters).
   /// nullopt when the reference state is not in the window (any more).
   std::optional<ExternalCheckResult> offerTrackingLink(std::int64_t t_ref_ns, const geometry::SE3& T_nr, const Mat6& covariance);
 
@@ -71,8 +83,12 @@ class VioEstimator {
   std::optional<std::size_t> indexOf(std::int64_t t_ns) const;
   std::string checkHealth() const;
 
+  SolverOptions solverOptions() const;
+  bool addVisualLink(std::size_t r, std::size_t n, const geometry::SE3& T_nr, const Mat6& covariance);
+
   EstimatorOptions options_;
   camera::ImuNoise noise_;
+  bool inertial_ = true;
   Window window_;
   imu::NavState predicted_newest_;  ///< IMU prediction of the newest state, for the external check
 };

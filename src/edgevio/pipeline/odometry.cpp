@@ -4,12 +4,15 @@ namespace edgevio::pipeline {
 
 using geometry::SE3;
 
+namespace {
+SE3 poseOf(const imu::NavState& x) { return SE3(x.R_w_b, x.p_w); }
+}  // namespace
+
 bool isImuMode(const std::string& mode) { return mode == "edge+imu" || mode == "edge+imu+loop"; }
+bool isLoopMode(const std::string& mode) { return mode == "edge+loop" || mode == "edge+imu+loop"; }
 
 std::string checkMode(const std::string& mode) {
-  if (mode == "edge-only" || mode == "edge+imu") return {};
-  if (mode == "edge+loop" || mode == "edge+imu+loop")
-    return "mode '" + mode + "' is not implemented yet (loop closure follows); use edge-only or edge+imu";
+  if (mode == "edge-only" || mode == "edge+imu" || mode == "edge+loop" || mode == "edge+imu+loop") return {};
   return "unknown mode '" + mode + "': use edge-only, edge+imu, edge+loop or edge+imu+loop";
 }
 
@@ -17,123 +20,163 @@ Odometry::Odometry(const std::string& mode, const Config& config, const camera::
                    const camera::StereoRectifier& rectifier, const std::vector<io::ImuSample>& imu,
                    const imu::StaticInit& init)
     : mode_(mode),
+      inertial_(isImuMode(mode)),
+      loop_(isLoopMode(mode)),
       config_(config),
       imu_(imu),
       init_(init),
+      T_b_c_(rectifier.T_b_rect(0)),
       tracker_(rectifier, config.vision, config.alignment, config.tracking),
-      estimator_(config.estimator, rig.imu, rectifier.T_b_rect(0)) {}
+      estimator_(config.estimator, rig.imu, rectifier.T_b_rect(0), isImuMode(mode)) {}
 
 FrameResult Odometry::process(const tracking::StereoFrame& frame) {
   if (t_first_ < 0) t_first_ = frame.t_ns;
-  FrameResult r = isImuMode(mode_) ? processEdgeImu(frame) : processEdgeOnly(frame);
+  FrameResult r = mode_ == "edge-only" ? processEdgeOnly(frame) : processWindowed(frame);
   t_prev_ = frame.t_ns;
   return r;
 }
 
+std::optional<geometry::SO3> Odometry::gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const {
+  geometry::SO3 R;
+  if (t0 < 0 || !imu::integrateGyro(imu_, t0, t1, bias, &R)) return std::nullopt;
+  return R;
+}
+
 FrameResult Odometry::processEdgeOnly(const tracking::StereoFrame& frame) {
-  std::optional<geometry::SO3> dR;
-  if (t_prev_ >= 0) {
-    geometry::SO3 R;
-    if (imu::integrateGyro(imu_, t_prev_, frame.t_ns, init_.gyro_bias, &R)) dR = R;
-  }
   FrameResult r;
-  r.track = tracker_.track(frame, dR, SE3(init_.R_w_b, Vec3::Zero()));
+  r.track = tracker_.track(frame, gyroRotation(t_prev_, frame.t_ns, init_.gyro_bias), SE3(init_.R_w_b, Vec3::Zero()));
   r.T_w_b = r.track.T_w_b;
   return r;
 }
 
 void Odometry::restart(std::int64_t t_ns, imu::NavState x, bool static_start) {
   estimator_.initialize(t_ns, x, static_start);
-  if (const auto kf = tracker_.keyframeTime(); kf && *kf == t_ns) estimator_.markKeyframe(t_ns);
+  keyframes_.clear();
+  if (const auto kf = tracker_.keyframeData(); kf && kf->t_ns == t_ns) {
+    estimator_.markKeyframe(t_ns);
+    keyframes_[t_ns] = kf;
+  }
 }
 
-FrameResult Odometry::processEdgeImu(const tracking::StereoFrame& frame) {
+FrameResult Odometry::initializeWindow(const tracking::StereoFrame& frame) {
   FrameResult r;
-  r.estimator_used = true;
-  const auto poseOf = [](const imu::NavState& x) { return SE3(x.R_w_b, x.p_w); };
-  if (!estimator_.initialized() && (imu_.empty() || imu_.front().t_ns > frame.t_ns)) {
-    // The IMU has not started yet: track visually until it has.
+  // Static initialisation (METHOD.md §5): roll, pitch and gyro bias from the
+  // IMU, yaw 0, position 0, velocity 0.
+  imu::NavState x;
+  x.R_w_b = init_.R_w_b;
+  x.b_g = init_.gyro_bias;
+  if (t_prev_ < 0) {
+    r.track = tracker_.track(frame, poseOf(x), false);
+  } else {
     r = processEdgeOnly(frame);
+    x.R_w_b = r.track.T_w_b.so3();
+    x.p_w = r.track.T_w_b.translation();
+  }
+  r.estimator_used = true;
+  // Still inside the static window: the static start holds.
+  const bool still_static = init_.is_static && static_cast<double>(frame.t_ns - t_first_) * 1e-9 < config_.tracking.static_init_window_s;
+  restart(frame.t_ns, x, inertial_ && still_static);
+  r.T_w_b = r.track.T_w_b;
+  if (inertial_) r.state = estimator_.newest();
+  return r;
+}
+
+void Odometry::closeLoops(FrameResult* r) {
+  const auto latest_data = tracker_.keyframeData();
+  const auto latest_state = estimator_.stateAt(latest_data->t_ns);
+  if (!latest_state) return;
+  keyframes_[latest_data->t_ns] = latest_data;
+  std::vector<loop::LoopKeyframe> older;
+  for (auto it = keyframes_.begin(); it != keyframes_.end();) {
+    const auto x = estimator_.stateAt(it->first);
+    if (!x) {
+      it = keyframes_.erase(it);  // left the window
+      continue;
+    }
+    if (it->first != latest_data->t_ns) older.push_back({it->second, poseOf(*x) * T_b_c_});
+    ++it;
+  }
+  if (!loop_) return;
+  r->loop_ran = true;
+  const loop::LoopKeyframe latest{latest_data, poseOf(*latest_state) * T_b_c_};
+  for (const loop::LoopLink& l : loop::closeLoops(latest, older, config_.loop, config_.alignment, &r->loop))
+    loop_closures_ += estimator_.addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
+}
+
+FrameResult Odometry::processWindowed(const tracking::StereoFrame& frame) {
+  if (inertial_ && !estimator_.initialized() && (imu_.empty() || imu_.front().t_ns > frame.t_ns)) {
+    // The IMU has not started yet: track visually until it has.
+    FrameResult r = processEdgeOnly(frame);
     r.event = "no IMU reading before this frame: tracked without the estimator";
     return r;
   }
-  if (!estimator_.initialized()) {
-    // Static initialisation (METHOD.md §5): roll, pitch and gyro bias from the
-    // IMU, yaw 0, position 0, velocity 0.
-    imu::NavState x;
-    x.R_w_b = init_.R_w_b;
-    x.b_g = init_.gyro_bias;
-    if (t_prev_ < 0) {
-      r.track = tracker_.track(frame, poseOf(x), false);
-    } else {
-      r = processEdgeOnly(frame);
-      r.estimator_used = true;
+  if (!estimator_.initialized()) return initializeWindow(frame);
+
+  FrameResult r;
+  r.estimator_used = true;
+  const imu::NavState last = estimator_.newest();
+  std::optional<imu::Preintegration> pre;
+  SE3 T_w_b_pred = poseOf(last);
+  bool rotation_reliable = false;
+  if (inertial_) {
+    pre = estimator_.preintegrateTo(imu_, frame.t_ns);
+    if (!pre) {
+      // No IMU coverage between the frames: track from the last pose, and
+      // start a new window here (the inertial chain is broken).
+      r.track = tracker_.track(frame, poseOf(last), false);
+      imu::NavState x = last;
       x.R_w_b = r.track.T_w_b.so3();
       x.p_w = r.track.T_w_b.translation();
+      restart(frame.t_ns, x, false);
+      ++resets_;
+      r.event = "no IMU coverage (or an IMU gap) since the previous frame: estimator restarted";
+      r.T_w_b = r.track.T_w_b;
+      r.state = estimator_.newest();
+      return r;
     }
-    // Still inside the static window: the static start holds.
-    const bool still_static = init_.is_static && static_cast<double>(frame.t_ns - t_first_) * 1e-9 < config_.tracking.static_init_window_s;
-    restart(frame.t_ns, x, still_static);
-    r.T_w_b = r.track.T_w_b;
-    r.state = estimator_.newest();
-    return r;
+    T_w_b_pred = poseOf(estimator::predictState(last, *pre));
+    rotation_reliable = true;
+  } else if (const auto dR = gyroRotation(t_prev_, frame.t_ns, init_.gyro_bias)) {
+    T_w_b_pred = SE3(last.R_w_b * *dR, last.p_w);  // the paper's guess: gyro rotation, previous translation
+    rotation_reliable = true;
   }
 
-  std::optional<imu::Preintegration> pre = estimator_.preintegrateTo(imu_, frame.t_ns);
-  if (!pre) {
-    // No IMU coverage between the frames: track from the last pose, and start
-    // a new window here (the inertial chain is broken).
-    const imu::NavState last = estimator_.newest();
-    r.track = tracker_.track(frame, poseOf(last), false);
-    imu::NavState x = last;
-    x.R_w_b = r.track.T_w_b.so3();
-    x.p_w = r.track.T_w_b.translation();
-    restart(frame.t_ns, x, false);
-    ++resets_;
-    r.event = "no IMU coverage (or an IMU gap) since the previous frame: estimator restarted";
-    r.T_w_b = r.track.T_w_b;
-    r.state = estimator_.newest();
-    return r;
-  }
-
-  const imu::NavState predicted = estimator::predictState(estimator_.newest(), *pre);
   tracker_.correctPoses([&](std::int64_t t) -> std::optional<SE3> {
     if (const auto x = estimator_.stateAt(t)) return poseOf(*x);
     return std::nullopt;
   });
-  r.track = tracker_.track(frame, poseOf(predicted), true);
+  const auto keyframe_before = tracker_.keyframeTime();
+  r.track = tracker_.track(frame, T_w_b_pred, rotation_reliable);
   const tracking::FrameTrack& t = r.track;
   const bool aligned = t.aligned && t.self_check_passed;
-  estimator_.addState(frame.t_ns, std::move(*pre));
+  if (inertial_)
+    estimator_.addState(frame.t_ns, std::move(*pre));
+  else
+    estimator_.addStateWithoutImu(frame.t_ns, aligned ? t.T_w_b : T_w_b_pred);
   if (t.promoted_previous) estimator_.markKeyframe(t.reference_t_ns);
   bool link_good = false;
   if (aligned) {
     const auto check = estimator_.offerTrackingLink(t.reference_t_ns, t.alignment.T_nr, t.alignment.covariance);
     if (check) r.external = *check;
-    r.external_check = !check ? "no reference" : check->accepted ? "accepted" : "rejected";
+    if (inertial_) r.external_check = !check ? "no reference" : check->accepted ? "accepted" : "rejected";
     link_good = check && check->accepted;
     // A rejected link is dropped and the frame becomes a keyframe (METHOD.md §5);
     // so does a frame whose keyframe is no longer in the window (after a restart).
     if (!link_good && !t.keyframe) r.forced_keyframe = tracker_.promoteLastFrame();
   }
   if (t.keyframe || r.forced_keyframe) estimator_.markKeyframe(frame.t_ns);
+  if (tracker_.keyframeTime() != keyframe_before) closeLoops(&r);
 
   r.estimator = estimator_.optimize(link_good, tracker_.keyframeTime());
   if (!r.estimator.reset_reason.empty()) {
     // The estimate blew up: restart the window at this frame from the
     // tracker's pose (or the prediction), keeping what is still plausible.
-    imu::NavState x = predicted;
-    if (aligned) {
-      x.R_w_b = t.T_w_b.so3();
-      x.p_w = t.T_w_b.translation();
-    }
+    imu::NavState x = estimator_.newest();
+    x.R_w_b = (aligned ? t.T_w_b : T_w_b_pred).so3();
+    x.p_w = (aligned ? t.T_w_b : T_w_b_pred).translation();
     if (!x.v_w.allFinite() || x.v_w.norm() > config_.estimator.reset_velocity) x.v_w.setZero();
     if (!x.b_a.allFinite() || x.b_a.norm() > config_.estimator.reset_accel_bias) x.b_a.setZero();
     if (!x.b_g.allFinite() || x.b_g.norm() > config_.estimator.reset_gyro_bias) x.b_g = init_.gyro_bias;
-    if (!x.p_w.allFinite() || !x.R_w_b.matrix().allFinite()) {
-      x.R_w_b = t.T_w_b.so3();
-      x.p_w = t.T_w_b.translation();
-    }
     restart(frame.t_ns, x, false);
     ++resets_;
     r.event = "estimator reset: " + r.estimator.reset_reason;
@@ -141,9 +184,10 @@ FrameResult Odometry::processEdgeImu(const tracking::StereoFrame& frame) {
     // The keyframe was marginalised: later links need a reference in the window.
     r.forced_keyframe = true;
     estimator_.markKeyframe(frame.t_ns);
+    closeLoops(&r);
   }
   r.T_w_b = poseOf(estimator_.newest());
-  r.state = estimator_.newest();
+  if (inertial_) r.state = estimator_.newest();
   return r;
 }
 

@@ -1,13 +1,18 @@
 #pragma once
-// One frame at a time through the system (METHOD.md §1): tracking, then (in
-// the IMU modes) the estimator. The stage code both the offline and the
-// real-time drivers call; it owns the tracker and the estimator and talks to
-// them through their plain results (FrameTrack, EstimatorUpdate).
-//   edge-only: the tracker's causal pose, the gyroscope for the rotation guess.
-//   edge+imu:  the IMU predicts every frame (the alignment's initial guess),
-//              the tracking link passes the external check into the window,
-//              the window is solved and marginalised, and the newest state
-//              is the frame's pose. A rejected link makes the frame a keyframe.
+// One frame at a time through the system (METHOD.md §1): tracking, then the
+// estimator, then local loop closure on new keyframes. The stage code both
+// the offline and the real-time drivers call; it owns the tracker, the
+// estimator and the keyframes in the window, and talks to them through their
+// plain results (FrameTrack, EstimatorUpdate, LoopLink).
+//   edge-only:     the tracker's causal pose; the gyroscope guesses the rotation.
+//   edge+loop:     the window as a pose graph of tracking and loop links
+//                  (no IMU links); the gyroscope guesses the rotation.
+//   edge+imu:      the IMU predicts every frame (the alignment's initial
+//                  guess), tracking links pass the external check into the
+//                  window, which is solved and marginalised; the newest state
+//                  is the frame's pose. A rejected link makes the frame a keyframe.
+//   edge+imu+loop: the full system.
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +22,7 @@
 #include "edgevio/config/config.h"
 #include "edgevio/estimator/vio_estimator.h"
 #include "edgevio/imu/gyro_integration.h"
+#include "edgevio/loop/local_loop_closure.h"
 #include "edgevio/tracking/edge_tracker.h"
 
 namespace edgevio::pipeline {
@@ -28,13 +34,16 @@ struct FrameResult {
   bool estimator_used = false;
   std::optional<imu::NavState> state;    ///< the newest window state (velocity, biases) when the estimator ran
   estimator::EstimatorUpdate estimator;
-  std::string external_check = "-";      ///< accepted | rejected | - (no link offered)
+  std::string external_check = "-";      ///< accepted | rejected | no reference | - (no link offered, or no IMU)
   estimator::ExternalCheckResult external;
   bool forced_keyframe = false;          ///< became a keyframe because its link was rejected or the keyframe left the window
+  bool loop_ran = false;                 ///< a new keyframe looked for loop closures
+  loop::LoopStats loop;
   std::string event;                     ///< a reset or an IMU gap, for the log
 };
 
 bool isImuMode(const std::string& mode);
+bool isLoopMode(const std::string& mode);
 /// Empty when `mode` is one `edgevio run` accepts, else the message naming the choices.
 std::string checkMode(const std::string& mode);
 
@@ -49,20 +58,27 @@ class Odometry {
 
   bool lost() const { return tracker_.lost(); }
   std::size_t resets() const { return resets_; }
+  std::size_t loopClosures() const { return loop_closures_; }
 
  private:
   FrameResult processEdgeOnly(const tracking::StereoFrame& frame);
-  FrameResult processEdgeImu(const tracking::StereoFrame& frame);
+  FrameResult processWindowed(const tracking::StereoFrame& frame);
+  FrameResult initializeWindow(const tracking::StereoFrame& frame);
   void restart(std::int64_t t_ns, imu::NavState x, bool static_start);
+  void closeLoops(FrameResult* r);
+  std::optional<geometry::SO3> gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const;
 
   std::string mode_;
+  bool inertial_, loop_;
   Config config_;
   const std::vector<io::ImuSample>& imu_;
   imu::StaticInit init_;
+  geometry::SE3 T_b_c_;
   tracking::EdgeTracker tracker_;
   estimator::VioEstimator estimator_;
+  std::map<std::int64_t, std::shared_ptr<const tracking::KeyframeData>> keyframes_;  ///< in the window, for loop closure
   std::int64_t t_first_ = -1, t_prev_ = -1;
-  std::size_t resets_ = 0;
+  std::size_t resets_ = 0, loop_closures_ = 0;
 };
 
 }  // namespace edgevio::pipeline

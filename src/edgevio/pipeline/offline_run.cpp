@@ -36,8 +36,8 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   if (!frames_csv) throw InputError(req.out_dir, 0, "cannot write to the output folder");
   frames_csv << "timestamp_ns,keyframe,keyframe_reason,aligned,self_check,reference_points,points_used,visible_ratio,"
                 "iterations,mean_distance_px,external_check,external_rotation_deg,external_translation_m,est_iterations,"
-                "est_initial_cost,est_final_cost,marginalized,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,solve_ms,marginalize_ms,"
-                "total_ms\n";
+                "est_initial_cost,est_final_cost,marginalized,loop_candidates,loop_accepted,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,"
+                "solve_ms,marginalize_ms,loop_ms,total_ms\n";
   {
     std::ofstream cfg(fs::path(req.out_dir) / "config.yaml");
     writeConfig(cfg, config);
@@ -100,7 +100,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
     const estimator::EstimatorUpdate& e = fr.estimator;
     char row[768];
     std::snprintf(row, sizeof row,
-                  "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%s,%.3f,%.4f,%d,%.6g,%.6g,%s,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
+                  "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%s,%.3f,%.4f,%d,%.6g,%.6g,%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
                   static_cast<long long>(t.t_ns), t.keyframe || fr.forced_keyframe ? 1 : 0,
                   t.keyframe_reason.empty() ? (t.promoted_previous ? "previous frame promoted"
                                                : fr.forced_keyframe ? "forced by the estimator" : "-")
@@ -108,8 +108,9 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
                   t.aligned ? 1 : 0, t.self_check_passed ? 1 : 0, t.reference_points, t.alignment.points_used,
                   t.alignment.visible_ratio, t.alignment.iterations, t.alignment.mean_distance_px,
                   fr.external_check.c_str(), fr.external.rotation_deg, fr.external.translation_m, e.iterations,
-                  e.initial_cost, e.final_cost, e.marginalized.c_str(), t.canny_ms, t.dt_ms - t.lines_ms, t.lines_ms,
-                  t.bm_ms, t.alignment.ms, e.solve_ms, e.marginalize_ms, total_ms);
+                  e.initial_cost, e.final_cost, e.marginalized.c_str(), fr.loop.candidates, fr.loop.accepted, t.canny_ms,
+                  t.dt_ms - t.lines_ms, t.lines_ms, t.bm_ms, t.alignment.ms, e.solve_ms, e.marginalize_ms,
+                  fr.loop_ran ? fr.loop.ms : 0.0, total_ms);
     frames_csv << row;
     if (progress) progress(done, total, static_cast<double>(t.t_ns - pairs.front().t_ns) * 1e-9);
   }
@@ -119,6 +120,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   io::writeTrajectoryEuroc((fs::path(req.out_dir) / "trajectory.csv").string(), trajectory);
 
   s.estimator_resets = odometry.resets();
+  s.loop_closures = odometry.loopClosures();
   s.duration_s = static_cast<double>(pairs.back().t_ns - pairs.front().t_ns) * 1e-9;
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   s.realtime_factor = s.wall_s > 0 ? s.duration_s / s.wall_s : 0.0;
@@ -135,7 +137,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   j.key("self_check_failures").value(s.self_check_failures);
   j.key("external_check_rejections").value(s.external_check_rejections);
   j.key("estimator_resets").value(odometry.resets());
-  j.key("loop_closures").value(0);
+  j.key("loop_closures").value(odometry.loopClosures());
   j.key("skipped_unreadable_frames").value(s.skipped_unreadable);
   j.key("static_initialization").value(init.is_static);
   j.key("failed").value(s.failed);

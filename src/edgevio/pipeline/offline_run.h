@@ -25,7 +25,7 @@ struct RunRequest {
 
 struct RunSummary {
   std::size_t frames = 0, keyframes = 0, self_check_failures = 0, skipped_unreadable = 0;
-  std::size_t external_check_rejections = 0, estimator_resets = 0;
+  std::size_t external_check_rejections = 0, estimator_resets = 0, loop_closures = 0;
   std::vector<std::string> events;  ///< resets and IMU gaps, "t = … s: what"
   bool failed = false;
   std::string failure;

@@ -1,6 +1,7 @@
 #include "edgevio/tracking/edge_alignment.h"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -105,14 +106,15 @@ LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const SE3& T, 
 }  // namespace
 
 AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref, const vision::EdgePyramid& cur,
-                           const SE3& T_init, const AlignmentOptions& o, int coarsest) {
+                           const SE3& T_init, const AlignmentOptions& o, int coarsest, int finest) {
   const auto t0 = std::chrono::steady_clock::now();
   AlignmentResult res;
   const bool laplacian = o.weight == "laplacian";
   SE3 T = T_init;
   int levels = static_cast<int>(std::min(ref.size(), cur.levels.size()));
   if (coarsest >= 0) levels = std::min(levels, coarsest + 1);
-  for (int l = levels - 1; l >= 0; --l) {
+  finest = std::clamp(finest, 0, std::max(0, levels - 1));
+  for (int l = levels - 1; l >= finest; --l) {
     const auto& points = ref[static_cast<std::size_t>(l)];
     const vision::EdgeLevel& level = cur.levels[static_cast<std::size_t>(l)];
     if (static_cast<int>(points.size()) < o.min_points) continue;
@@ -145,9 +147,10 @@ AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref,
     if (last.visible < o.min_points || last.sum_r / last.visible > best_mean) T = best;
   }
 
-  // Final figures at level 0: self check, covariance.
-  if (!ref.empty() && !cur.levels.empty()) {
-    const LevelStats s = accumulate(ref[0], T, cur.levels[0], o, laplacian, true);
+  // Final figures at the finest level: self check, covariance.
+  if (static_cast<int>(ref.size()) > finest && static_cast<int>(cur.levels.size()) > finest) {
+    const auto f = static_cast<std::size_t>(finest);
+    const LevelStats s = accumulate(ref[f], T, cur.levels[f], o, laplacian, finest == 0);
     res.points_used = s.visible;
     res.visible_ratio = s.considered == 0 ? 0.0 : static_cast<double>(s.visible) / static_cast<double>(s.considered);
     res.mean_distance_px = s.visible > 0 ? s.sum_r / s.visible : std::numeric_limits<double>::infinity();
@@ -156,7 +159,8 @@ AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref,
       res.covariance = ldlt.solve(Mat6::Identity());
     else
       res.covariance = Mat6::Identity() * 1e6;
-    res.self_check_passed = s.visible >= o.min_points && res.mean_distance_px <= o.self_check_max_mean_distance_px &&
+    res.self_check_passed = s.visible >= o.min_points &&
+                            res.mean_distance_px <= std::ldexp(o.self_check_max_mean_distance_px, -finest) &&
                             res.visible_ratio >= o.self_check_min_visible_ratio;
   }
   res.T_nr = T;

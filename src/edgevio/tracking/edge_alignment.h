@@ -42,18 +42,19 @@ struct AlignmentResult {
   geometry::SE3 T_nr;
   Mat6 covariance = Mat6::Identity();  ///< (JᵀWJ)⁻¹ at level 0 [m², rad²]
   bool self_check_passed = false;
-  double mean_distance_px = 0.0;       ///< mean υ of the visible points at level 0
-  double visible_ratio = 0.0;          ///< fraction of level-0 points inside the image
-  int points_used = 0;                 ///< visible points at level 0
+  double mean_distance_px = 0.0;       ///< mean υ of the visible points at the finest level (its pixels)
+  double visible_ratio = 0.0;          ///< fraction of the finest level's points inside the image
+  int points_used = 0;                 ///< visible points at the finest level
   int iterations = 0;                  ///< over all levels
   double ms = 0.0;
 };
 
 /// Aligns the reference points (per level, keyframe camera frame) to the
 /// current pyramid, starting from T_nr_init, from level `coarsest` (−1: the
-/// coarsest available) down to level 0.
+/// coarsest available) down to level `finest`. The self check and covariance
+/// are evaluated at `finest`, the distance threshold scaled to its pixels (2^−finest).
 AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& reference_points,
                            const vision::EdgePyramid& current, const geometry::SE3& T_nr_init,
-                           const AlignmentOptions& options, int coarsest = -1);
+                           const AlignmentOptions& options, int coarsest = -1, int finest = 0);
 
 }  // namespace edgevio::tracking

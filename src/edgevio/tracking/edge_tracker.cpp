@@ -27,20 +27,19 @@ EdgeTracker::EdgeTracker(const camera::StereoRectifier& rectifier, const vision:
 
 void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const SE3& T_w_c, std::int64_t t_ns,
                                FrameTrack* out) {
-  Keyframe kf;
-  kf.depth = vision::computeKeyframeDepth(pyramid, vision::downsample2(right_full), rect_.baseline(), vision_);
-  kf.pyramid = std::move(pyramid);
-  kf.T_w_c = T_w_c;
-  kf.t_ns = t_ns;
-  out->bm_ms = kf.depth.bm_ms;
+  auto data = std::make_shared<KeyframeData>();
+  data->t_ns = t_ns;
+  data->depth = vision::computeKeyframeDepth(pyramid, vision::downsample2(right_full), rect_.baseline(), vision_);
+  data->pyramid = std::move(pyramid);
+  out->bm_ms = data->depth.bm_ms;
   out->keyframe = true;
-  keyframe_ = std::move(kf);
+  keyframe_ = Keyframe{std::move(data), T_w_c};
 }
 
 AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, const SE3& T_w_b_pred, bool have_gyro,
                                              bool* gyro_check_failed) const {
   const SE3 T_nr_init = (T_w_b_pred * T_b_c_).inverse() * keyframe_->T_w_c;
-  AlignmentResult r = alignEdges(keyframe_->depth.points, pyr, T_nr_init, alignment_);
+  AlignmentResult r = alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_);
   // Gyro check: the gyroscope's rotation over one frame is accurate to a
   // fraction of a degree; an alignment far from it has converged to a wrong
   // minimum (repetitive texture), so re-align from the prediction on the fine
@@ -52,7 +51,7 @@ AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, con
   if (have_gyro && rotationError(r.T_nr) > tracking_.gyro_check_deg) {
     *gyro_check_failed = true;
     const AlignmentResult fine =
-        alignEdges(keyframe_->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1);
+        alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1);
     const double ms = r.ms;
     r = fine;
     r.ms += ms;
@@ -72,7 +71,7 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>
 
 void EdgeTracker::correctPoses(const std::function<std::optional<SE3>(std::int64_t)>& pose_of) {
   if (keyframe_)
-    if (const auto T = pose_of(keyframe_->t_ns)) keyframe_->T_w_c = *T * T_b_c_;
+    if (const auto T = pose_of(keyframe_->data->t_ns)) keyframe_->T_w_c = *T * T_b_c_;
   if (previous_)
     if (const auto T = pose_of(previous_->t_ns)) previous_->T_w_b = *T;
 }
@@ -85,9 +84,13 @@ bool EdgeTracker::promoteLastFrame() {
   return true;
 }
 
+std::shared_ptr<const KeyframeData> EdgeTracker::keyframeData() const {
+  return keyframe_ ? keyframe_->data : nullptr;
+}
+
 std::optional<std::int64_t> EdgeTracker::keyframeTime() const {
   if (!keyframe_) return std::nullopt;
-  return keyframe_->t_ns;
+  return keyframe_->data->t_ns;
 }
 
 FrameTrack EdgeTracker::track(const StereoFrame& frame, const SE3& T_w_b_pred, bool rotation_reliable) {
@@ -108,8 +111,8 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const SE3& T_w_b_pred, b
   }
 
   out.aligned = true;
-  out.reference_points = static_cast<int>(keyframe_->depth.points.empty() ? 0 : keyframe_->depth.points[0].size());
-  out.reference_t_ns = keyframe_->t_ns;
+  out.reference_points = static_cast<int>(keyframe_->data->depth.points.empty() ? 0 : keyframe_->data->depth.points[0].size());
+  out.reference_t_ns = keyframe_->data->t_ns;
   out.alignment = alignToKeyframe(pyr, T_w_b_pred, rotation_reliable, &out.gyro_check_failed);
   if (!out.alignment.self_check_passed && previous_) {
     // Motion since the keyframe was too large: the previous frame, tracked
@@ -118,9 +121,9 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const SE3& T_w_b_pred, b
     makeKeyframe(std::move(previous_->pyramid), previous_->right, previous_->T_w_b * T_b_c_, previous_->t_ns, &promoted);
     previous_.reset();
     out.promoted_previous = true;
-    out.reference_t_ns = keyframe_->t_ns;
+    out.reference_t_ns = keyframe_->data->t_ns;
     out.bm_ms += promoted.bm_ms;
-    out.reference_points = static_cast<int>(keyframe_->depth.points[0].size());
+    out.reference_points = static_cast<int>(keyframe_->data->depth.points[0].size());
     bool gyro_failed = false;
     const double first_ms = out.alignment.ms;
     out.alignment = alignToKeyframe(pyr, T_w_b_pred, rotation_reliable, &gyro_failed);
@@ -135,7 +138,7 @@ FrameTrack EdgeTracker::track(const StereoFrame& frame, const SE3& T_w_b_pred, b
     // Keyframe policy (METHOD.md §3).
     for (int l = 0; l < std::min<int>(2, static_cast<int>(pyr.levels.size())); ++l) {
       const double a = pyr.levels[static_cast<std::size_t>(l)].edge_count;
-      const double b = keyframe_->pyramid.levels[static_cast<std::size_t>(l)].edge_count;
+      const double b = keyframe_->data->pyramid.levels[static_cast<std::size_t>(l)].edge_count;
       if (a > tracking_.keyframe_edge_ratio * b || b > tracking_.keyframe_edge_ratio * a) out.keyframe_reason = "edge count changed";
     }
     if (out.reference_points < tracking_.keyframe_min_points) out.keyframe_reason = "too few reference points";

@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -20,6 +21,15 @@ namespace edgevio::tracking {
 struct StereoFrame {
   std::int64_t t_ns = 0;
   cv::Mat left, right;
+};
+
+/// A keyframe's images as alignment needs them: its edge pyramid and its
+/// reference points with stereo depth. Immutable once made, shared with loop
+/// closure while the keyframe is in the window.
+struct KeyframeData {
+  std::int64_t t_ns = 0;
+  vision::EdgePyramid pyramid;
+  vision::KeyframeDepth depth;
 };
 
 /// What happened to one frame.
@@ -62,16 +72,16 @@ class EdgeTracker {
   /// link, or the old keyframe left the window). False when it already is.
   bool promoteLastFrame();
   std::optional<std::int64_t> keyframeTime() const;
+  /// The current keyframe's data (null before the first frame).
+  std::shared_ptr<const KeyframeData> keyframeData() const;
 
   int consecutiveFailures() const { return consecutive_failures_; }
   bool lost() const { return consecutive_failures_ >= tracking_.lost_after_failures; }
 
  private:
   struct Keyframe {
-    vision::EdgePyramid pyramid;
-    vision::KeyframeDepth depth;
+    std::shared_ptr<const KeyframeData> data;
     geometry::SE3 T_w_c;
-    std::int64_t t_ns = 0;
   };
   void makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const geometry::SE3& T_w_c, std::int64_t t_ns,
                     FrameTrack* out);
