@@ -8,8 +8,8 @@ struct LoopOptions {
   double max_distance_depth_ratio = 0.5;     ///< candidate: camera centres closer than this times the new keyframe's median depth [-]
   double max_view_angle_deg = 30.0;          ///< candidate: optical axes closer than this [deg]
   int skip_recent_keyframes = 1;             ///< the newest keyframes before the new one are no candidates (tracking links them) [-]
-  int cross_check_level = 1;                 ///< the cross check aligns from the top of the pyramid down to this level (2: 94x60, the paper's coarsest) [-]
-  int max_coarse_attempts = 4;               ///< candidates cross-checked at the coarsest level per keyframe [-]
+  int cross_check_level = 1;                 ///< the cross check aligns from the top of the pyramid down to this level (1: 188x120) [-]
+  int max_coarse_attempts = 4;               ///< candidates cross-checked on the coarse levels per keyframe [-]
   int max_full_attempts = 2;                 ///< survivors re-aligned through all levels per keyframe [-]
   double max_ms = 20.0;                      ///< no new attempt starts after this much time per keyframe [ms]
   double coarse_max_mean_distance_px = 1.0;  ///< coarse self check: mean distance at cross_check_level, its pixels [px]
@@ -23,8 +23,8 @@ struct LoopOptions {
     v("max_distance_depth_ratio", max_distance_depth_ratio, "-", "candidate: camera centres closer than this times the new keyframe's median depth");
     v("max_view_angle_deg", max_view_angle_deg, "deg", "candidate: optical axes closer than this");
     v("skip_recent_keyframes", skip_recent_keyframes, "-", "the newest keyframes before the new one are no candidates (tracking links them)");
-    v("cross_check_level", cross_check_level, "-", "the cross check aligns from the top of the pyramid down to this level (2 = 94x60, the paper's coarsest)");
-    v("max_coarse_attempts", max_coarse_attempts, "-", "candidates cross-checked at the coarsest level per keyframe");
+    v("cross_check_level", cross_check_level, "-", "the cross check aligns from the pyramid top down to this level (1 = 188x120; 2 = 94x60 was too coarse)");
+    v("max_coarse_attempts", max_coarse_attempts, "-", "candidates cross-checked on the coarse levels per keyframe");
     v("max_full_attempts", max_full_attempts, "-", "survivors re-aligned through all levels per keyframe");
     v("max_ms", max_ms, "ms", "no new attempt starts after this much loop-closure time per keyframe");
     v("coarse_max_mean_distance_px", coarse_max_mean_distance_px, "px", "coarse self check: mean distance at cross_check_level, in its pixels");
