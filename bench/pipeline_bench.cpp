@@ -9,6 +9,7 @@
 // into $TMPDIR/edgevio_pipeline_bench and reuses it. MODE defaults to edge+imu.
 // The run is offline (one thread for the stages); its folder is printed.
 #include <algorithm>
+#include <exception>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -84,7 +85,13 @@ int main(int argc, char** argv) {
     }
   }
   const std::string run_dir = (work / ("run-" + mode)).string();
-  const pipeline::RunSummary s = pipeline::runOffline({dataset, run_dir, mode, 0}, Config{});
+  pipeline::RunSummary s;
+  try {
+    s = pipeline::runOffline({dataset, run_dir, mode, 0}, Config{});
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
   auto c = readColumns(run_dir + "/frames.csv");
   std::vector<double> bm;
   for (double x : c["bm_ms"])
@@ -104,6 +111,10 @@ int main(int argc, char** argv) {
   printRow("edge alignment", c["align_ms"], "frame");
   printRow("optimisation (window solve)", solve, "frame");
   printRow("marginalisation", marg, "frame");
+  std::vector<double> loop_ms;
+  for (double x : c["loop_ms"])
+    if (x > 0) loop_ms.push_back(x);
+  printRow("loop closure", loop_ms, "keyframe");
   printRow("total (incl. PNG decode, rectification)", c["total_ms"], "frame");
   std::printf("\nsequence %.1f s, wall %.1f s, real-time factor %.2f (one thread; run folder %s)\n", s.duration_s, s.wall_s,
               s.realtime_factor, run_dir.c_str());

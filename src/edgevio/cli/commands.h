@@ -56,7 +56,7 @@ int run(const RunArgs& args, std::ostream& out, std::ostream& err);
 
 struct DemoArgs {
   std::string out = "out/demo";
-  double duration_s = 20.0;
+  double duration_s = 30.0;
   bool fresh = false;
 };
 /// `edgevio demo`: simulate, estimate, evaluate, print the table.
