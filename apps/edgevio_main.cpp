@@ -65,8 +65,12 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--vignetting", sim.vignetting, "Vignetting strength k (default: config sim.vignetting)");
   sim_cmd->add_option("--stereo-mismatch", sim.stereo_mismatch, "Right/left gain mismatch (default: config)");
   sim_cmd->add_option("--config", sim.config, "Config file (YAML)");
+  cli::BenchArgs bench;
   auto* bench_cmd = app.add_subcommand("bench", "Run a benchmark matrix of sequences x modes x skips");
-  bench_cmd->allow_extras();
+  bench_cmd->add_option("matrix", bench.matrix, "Matrix YAML (sequences, modes, skips, config)")->required();
+  bench_cmd->add_option("--out", bench.out, "Output folder (data/, runs/, report.md, report.csv)")->required();
+  bench_cmd->add_option("--jobs", bench.jobs, "Runs in parallel on this machine");
+  bench_cmd->add_flag("--emit-jobs", bench.emit_jobs, "Print one self-contained shell command per run instead");
   cli::DemoArgs demo;
   auto* demo_cmd = app.add_subcommand("demo", "Simulate, estimate and evaluate a default sequence");
   demo_cmd->add_option("--out", demo.out, "Output folder");
@@ -84,7 +88,7 @@ int main(int argc, char** argv) {
   if (*eval_cmd) return cli::eval(ev, std::cout, std::cerr);
   if (*run_cmd) return cli::run(run, std::cout, std::cerr);
   if (*sim_cmd) return cli::simulate(sim, std::cout, std::cerr);
-  if (*bench_cmd) return cli::notImplemented("bench", "the pipeline issue", std::cerr);
+  if (*bench_cmd) return cli::bench(bench, std::cout, std::cerr);
   if (*demo_cmd) return cli::demo(demo, std::cout, std::cerr);
   std::cerr << app.help();
   return cli::kExitError;

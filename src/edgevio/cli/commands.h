@@ -62,6 +62,14 @@ struct DemoArgs {
 /// `edgevio demo`: simulate, estimate, evaluate, print the table.
 int demo(const DemoArgs& args, std::ostream& out, std::ostream& err);
 
+struct BenchArgs {
+  std::string matrix, out;
+  int jobs = 1;
+  bool emit_jobs = false;
+};
+/// `edgevio bench MATRIX.yaml --out DIR [--jobs N] [--emit-jobs]` (issue #8).
+int bench(const BenchArgs& args, std::ostream& out, std::ostream& err);
+
 /// `edgevio eval --results DIR`: evaluates every run folder, writes DIR/report.md
 /// and DIR/report.csv, prints the markdown table.
 int evalResults(const std::string& dir, const eval::EvalOptions& options, std::ostream& out, std::ostream& err);

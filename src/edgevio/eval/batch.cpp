@@ -47,18 +47,25 @@ RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOp
   if (r.folder == ".") r.folder = run.filename().string();
   r.sequence = r.folder;
   r.mode = "-";
-  r.realtime_factor = kNaN;
+  r.realtime_factor = r.peak_rss_mb = kNaN;
   YAML::Node summary(YAML::NodeType::Map);
   try {
     if (fs::exists(run / "summary.json")) summary = loadYamlFile((run / "summary.json").string());
     r.sequence = scalarOr(summary, "sequence", r.sequence);
     r.mode = scalarOr(summary, "mode", r.mode);
-    double rtf = 0.0;
-    if (summary["realtime_factor"] && summary["realtime_factor"].IsScalar() &&
-        std::sscanf(summary["realtime_factor"].Scalar().c_str(), "%lf", &rtf) == 1)
-      r.realtime_factor = rtf;
+    const auto number = [&](const char* key, double fallback) {
+      double v = 0.0;
+      const YAML::Node n = summary[key];
+      return n && n.IsScalar() && std::sscanf(n.Scalar().c_str(), "%lf", &v) == 1 ? v : fallback;
+    };
+    r.realtime_factor = number("realtime_factor", kNaN);
+    r.peak_rss_mb = number("peak_rss_mb", kNaN);
+    r.skip = static_cast<int>(number("skip", 0.0));
+    if (r.skip > 0) r.mode += ", skip " + std::to_string(r.skip);
     if (scalarOr(summary, "failed", "false") == "true") {
       r.failure = "run reported failure (summary.json: failed = true)";
+      const std::string why = scalarOr(summary, "failure", "");
+      if (!why.empty()) r.failure += ": " + why;
       return r;
     }
     const fs::path est = run / "trajectory_tum.txt";
@@ -127,28 +134,28 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
   }
   out << ".\n\n| sequence | mode | status | matched | ATE RMSE [m] | ARE-rot [deg/m] | ARE-trans [m/m] |";
   for (double d : options.rpe_deltas_m) out << " RPE " << d << " m [m] |";
-  out << " length [m] | RT factor |\n|---|---|---|---:|---:|---:|---:|";
+  out << " length [m] | RT factor | peak memory [MB] |\n|---|---|---|---:|---:|---:|---:|";
   for (std::size_t i = 0; i < options.rpe_deltas_m.size(); ++i) out << "---:|";
-  out << "---:|---:|\n";
+  out << "---:|---:|---:|\n";
   for (const auto& r : runs) {
     out << "| " << r.sequence << " | " << r.mode << " | ";
     if (!r.ok) {
       out << "**FAILED**: " << r.failure << " | - | - | - | - |";
       for (std::size_t i = 0; i < options.rpe_deltas_m.size(); ++i) out << " - |";
-      out << " - | " << num(r.realtime_factor, 1) << " |\n";
+      out << " - | " << num(r.realtime_factor, 1) << " | " << num(r.peak_rss_mb, 0) << " |\n";
       continue;
     }
     out << "ok | " << r.result.matched << " | " << num(r.result.ate_rmse_m, 4) << " | "
         << num(r.result.are_rot_deg_per_m, 5) << " | " << num(r.result.are_trans_m_per_m, 5) << " |";
     for (const auto& e : r.result.rpe) out << " " << num(e.trans_rmse_m, 4) << " |";
-    out << " " << num(r.result.length_m, 1) << " | " << num(r.realtime_factor, 1) << " |\n";
+    out << " " << num(r.result.length_m, 1) << " | " << num(r.realtime_factor, 1) << " | " << num(r.peak_rss_mb, 0) << " |\n";
   }
 }
 
 void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
   out << "sequence,mode,folder,status,failure,matched,align,ate_rmse_m,ate_mean_m,ate_median_m,ate_max_m,"
          "are_rot_deg_per_m,are_trans_m_per_m,rpe_deltas_m,rpe_trans_rmse_m,rpe_rot_rmse_deg,length_m,duration_s,"
-         "realtime_factor\n";
+         "realtime_factor,skip,peak_rss_mb\n";
   for (const auto& r : runs) {
     out << csvField(r.sequence) << "," << csvField(r.mode) << "," << csvField(r.folder) << ","
         << (r.ok ? "ok" : "failed") << "," << csvField(r.failure) << ",";
@@ -168,7 +175,8 @@ void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
     } else {
       out << ",,,,,,,,,,,,,";
     }
-    out << (std::isfinite(r.realtime_factor) ? num(r.realtime_factor, 2) : "") << "\n";
+    out << (std::isfinite(r.realtime_factor) ? num(r.realtime_factor, 2) : "") << "," << r.skip << ","
+        << (std::isfinite(r.peak_rss_mb) ? num(r.peak_rss_mb, 1) : "") << "\n";
   }
 }
 

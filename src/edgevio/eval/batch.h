@@ -27,6 +27,8 @@ struct RunEvaluation {
   std::string failure;   ///< why, when !ok
   EvalResult result;
   double realtime_factor = 0.0;  ///< from summary.json when present, else NaN
+  int skip = 0;                  ///< frames skipped between processed ones (summary.json "skip")
+  double peak_rss_mb = 0.0;      ///< the run's peak resident memory (summary.json "peak_rss_mb"), else NaN
 };
 
 /// Finds and evaluates every run folder under `dir`, sorted by sequence, mode, folder.

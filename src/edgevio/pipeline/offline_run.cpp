@@ -1,5 +1,7 @@
 #include "edgevio/pipeline/offline_run.h"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -124,6 +126,8 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   s.duration_s = static_cast<double>(pairs.back().t_ns - pairs.front().t_ns) * 1e-9;
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   s.realtime_factor = s.wall_s > 0 ? s.duration_s / s.wall_s : 0.0;
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0) s.peak_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB
 
   std::ofstream js(fs::path(req.out_dir) / "summary.json");
   JsonWriter j(js);
@@ -145,6 +149,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   j.key("duration_s").value(s.duration_s);
   j.key("wall_s").value(s.wall_s);
   j.key("realtime_factor").value(s.realtime_factor);
+  j.key("peak_rss_mb").value(s.peak_rss_mb);
   j.key("events").beginArray();
   for (const auto& ev : s.events) j.value(ev);
   j.endArray();

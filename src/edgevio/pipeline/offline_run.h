@@ -30,6 +30,7 @@ struct RunSummary {
   bool failed = false;
   std::string failure;
   double wall_s = 0.0, duration_s = 0.0, realtime_factor = 0.0;
+  double peak_rss_mb = 0.0;  ///< peak resident memory of the process so far (getrusage)
 };
 
 /// (frames done, frames total, sequence seconds done)
