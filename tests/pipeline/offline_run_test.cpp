@@ -179,6 +179,20 @@ TEST(OfflineRun, ShortRevisitingRenderLoopClosureLowersAte) {
   }
 }
 
+TEST(OfflineRun, ShortRenderedSequenceInRealTimeAccountsForEveryFrame) {
+  TempDir out;
+  RunRequest r{simulated().dataset, out.path(), "edge+imu", 0};
+  r.realtime = true;
+  const RunSummary s = runOffline(r, Config{});
+  std::printf("4 s figure8 in real time: %zu frames processed, %zu dropped, wall %.2f s\n", s.frames, s.dropped_frames, s.wall_s);
+  EXPECT_EQ(s.frames + s.dropped_frames, 81u);  // every frame is processed or counted as dropped
+  EXPECT_GT(s.frames, 0u);
+  EXPECT_GE(s.wall_s, 4.0 - 0.05);               // frames are released at their timestamps
+  const std::string summary = test::readFile(out.file("summary.json"));
+  EXPECT_NE(summary.find("\"realtime\": true"), std::string::npos);
+  EXPECT_NE(summary.find("\"dropped_frames\": " + std::to_string(s.dropped_frames)), std::string::npos);
+}
+
 TEST(OfflineRun, SkipKeepsEveryKPlusOneFrame) {
   TempDir out;
   const RunSummary s = runOffline({simulated().dataset, out.path(), "edge-only", 3}, Config{});

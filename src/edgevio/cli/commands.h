@@ -12,7 +12,6 @@ namespace edgevio::cli {
 
 constexpr int kExitOk = 0;
 constexpr int kExitError = 1;
-constexpr int kExitNotImplemented = 2;
 
 struct InfoArgs {
   std::string dataset;
@@ -74,7 +73,5 @@ int bench(const BenchArgs& args, std::ostream& out, std::ostream& err);
 /// and DIR/report.csv, prints the markdown table.
 int evalResults(const std::string& dir, const eval::EvalOptions& options, std::ostream& out, std::ostream& err);
 
-/// Prints "<name>: not implemented yet (...)" and returns kExitNotImplemented.
-int notImplemented(const std::string& name, const std::string& issue, std::ostream& err);
 
 }  // namespace edgevio::cli

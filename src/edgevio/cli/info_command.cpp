@@ -40,9 +40,4 @@ int info(const InfoArgs& args, std::ostream& out, std::ostream& err) {
   }
 }
 
-int notImplemented(const std::string& name, const std::string& issue, std::ostream& err) {
-  err << "edgevio " << name << ": not implemented yet (" << issue << ")\n";
-  return kExitNotImplemented;
-}
-
 }  // namespace edgevio::cli

@@ -9,17 +9,17 @@
 namespace edgevio::cli {
 
 int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
-  if (a.realtime) return notImplemented("run --realtime", "the pipeline issue", err);
   try {
     const Config config = a.config.empty() ? Config{} : loadConfig(a.config);
-    pipeline::RunRequest r{a.dataset, a.out, a.mode, a.skip};
+    pipeline::RunRequest r{a.dataset, a.out, a.mode, a.skip, a.realtime};
     Progress progress("frames", Progress::stderrIsTerminal());
     const pipeline::RunSummary s = pipeline::runOffline(
         r, config, [&](std::size_t done, std::size_t total, double seq_s) { progress.update(done, total, seq_s); },
         [&](const std::string& event) { err << "warning: " << event << "\n"; });
     out << "mode " << a.mode << ": " << s.frames << " frames, " << s.keyframes << " keyframes, "
         << s.self_check_failures << " self-check failures, " << s.external_check_rejections
-        << " external-check rejections, " << s.loop_closures << " loop closures, " << s.estimator_resets << " estimator resets, " << s.wall_s << " s wall, real-time factor "
+        << " external-check rejections, " << (a.realtime ? std::to_string(s.dropped_frames) + " frames dropped (real time), " : std::string())
+        << s.loop_closures << " loop closures, " << s.estimator_resets << " estimator resets, " << s.wall_s << " s wall, real-time factor "
         << s.realtime_factor << (s.failed ? ", FAILED: " + s.failure : std::string()) << "\n"
         << "wrote " << a.out << "/{trajectory_tum.txt, trajectory.csv, frames.csv, summary.json, config.yaml}\n";
     return s.failed ? kExitError : kExitOk;

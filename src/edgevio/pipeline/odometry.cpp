@@ -29,10 +29,11 @@ Odometry::Odometry(const std::string& mode, const Config& config, const camera::
       tracker_(rectifier, config.vision, config.alignment, config.tracking),
       estimator_(config.estimator, rig.imu, rectifier.T_b_rect(0), isImuMode(mode)) {}
 
-FrameResult Odometry::process(const tracking::StereoFrame& frame) {
-  if (t_first_ < 0) t_first_ = frame.t_ns;
-  FrameResult r = mode_ == "edge-only" ? processEdgeOnly(frame) : processWindowed(frame);
-  t_prev_ = frame.t_ns;
+FrameResult Odometry::process(tracking::PreparedFrame frame) {
+  const std::int64_t t = frame.t_ns;
+  if (t_first_ < 0) t_first_ = t;
+  FrameResult r = mode_ == "edge-only" ? processEdgeOnly(std::move(frame)) : processWindowed(std::move(frame));
+  t_prev_ = t;
   return r;
 }
 
@@ -42,9 +43,10 @@ std::optional<geometry::SO3> Odometry::gyroRotation(std::int64_t t0, std::int64_
   return R;
 }
 
-FrameResult Odometry::processEdgeOnly(const tracking::StereoFrame& frame) {
+FrameResult Odometry::processEdgeOnly(tracking::PreparedFrame frame) {
   FrameResult r;
-  r.track = tracker_.track(frame, gyroRotation(t_prev_, frame.t_ns, init_.gyro_bias), SE3(init_.R_w_b, Vec3::Zero()));
+  const auto dR = gyroRotation(t_prev_, frame.t_ns, init_.gyro_bias);
+  r.track = tracker_.track(std::move(frame), dR, SE3(init_.R_w_b, Vec3::Zero()));
   r.T_w_b = r.track.T_w_b;
   return r;
 }
@@ -58,7 +60,8 @@ void Odometry::restart(std::int64_t t_ns, imu::NavState x, bool static_start) {
   }
 }
 
-FrameResult Odometry::initializeWindow(const tracking::StereoFrame& frame) {
+FrameResult Odometry::initializeWindow(tracking::PreparedFrame frame) {
+  const std::int64_t t_ns = frame.t_ns;
   FrameResult r;
   // Static initialisation (METHOD.md §5): roll, pitch and gyro bias from the
   // IMU, yaw 0, position 0, velocity 0.
@@ -66,16 +69,16 @@ FrameResult Odometry::initializeWindow(const tracking::StereoFrame& frame) {
   x.R_w_b = init_.R_w_b;
   x.b_g = init_.gyro_bias;
   if (t_prev_ < 0) {
-    r.track = tracker_.track(frame, poseOf(x), false);
+    r.track = tracker_.track(std::move(frame), poseOf(x), false);
   } else {
-    r = processEdgeOnly(frame);
+    r = processEdgeOnly(std::move(frame));
     x.R_w_b = r.track.T_w_b.so3();
     x.p_w = r.track.T_w_b.translation();
   }
   r.estimator_used = true;
   // Still inside the static window: the static start holds.
-  const bool still_static = init_.is_static && static_cast<double>(frame.t_ns - t_first_) * 1e-9 < config_.tracking.static_init_window_s;
-  restart(frame.t_ns, x, inertial_ && still_static);
+  const bool still_static = init_.is_static && static_cast<double>(t_ns - t_first_) * 1e-9 < config_.tracking.static_init_window_s;
+  restart(t_ns, x, inertial_ && still_static);
   r.T_w_b = r.track.T_w_b;
   if (inertial_) r.state = estimator_.newest();
   return r;
@@ -103,14 +106,15 @@ void Odometry::closeLoops(FrameResult* r) {
     loop_closures_ += estimator_.addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
 }
 
-FrameResult Odometry::processWindowed(const tracking::StereoFrame& frame) {
-  if (inertial_ && !estimator_.initialized() && (imu_.empty() || imu_.front().t_ns > frame.t_ns)) {
+FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
+  const std::int64_t t_ns = frame.t_ns;
+  if (inertial_ && !estimator_.initialized() && (imu_.empty() || imu_.front().t_ns > t_ns)) {
     // The IMU has not started yet: track visually until it has.
-    FrameResult r = processEdgeOnly(frame);
+    FrameResult r = processEdgeOnly(std::move(frame));
     r.event = "no IMU reading before this frame: tracked without the estimator";
     return r;
   }
-  if (!estimator_.initialized()) return initializeWindow(frame);
+  if (!estimator_.initialized()) return initializeWindow(std::move(frame));
 
   FrameResult r;
   r.estimator_used = true;
@@ -119,15 +123,15 @@ FrameResult Odometry::processWindowed(const tracking::StereoFrame& frame) {
   SE3 T_w_b_pred = poseOf(last);
   bool rotation_reliable = false;
   if (inertial_) {
-    pre = estimator_.preintegrateTo(imu_, frame.t_ns);
+    pre = estimator_.preintegrateTo(imu_, t_ns);
     if (!pre) {
       // No IMU coverage between the frames: track from the last pose, and
       // start a new window here (the inertial chain is broken).
-      r.track = tracker_.track(frame, poseOf(last), false);
+      r.track = tracker_.track(std::move(frame), poseOf(last), false);
       imu::NavState x = last;
       x.R_w_b = r.track.T_w_b.so3();
       x.p_w = r.track.T_w_b.translation();
-      restart(frame.t_ns, x, false);
+      restart(t_ns, x, false);
       ++resets_;
       r.event = "no IMU coverage (or an IMU gap) since the previous frame: estimator restarted";
       r.T_w_b = r.track.T_w_b;
@@ -136,7 +140,7 @@ FrameResult Odometry::processWindowed(const tracking::StereoFrame& frame) {
     }
     T_w_b_pred = poseOf(estimator::predictState(last, *pre));
     rotation_reliable = true;
-  } else if (const auto dR = gyroRotation(t_prev_, frame.t_ns, init_.gyro_bias)) {
+  } else if (const auto dR = gyroRotation(t_prev_, t_ns, init_.gyro_bias)) {
     T_w_b_pred = SE3(last.R_w_b * *dR, last.p_w);  // the paper's guess: gyro rotation, previous translation
     rotation_reliable = true;
   }
@@ -146,13 +150,13 @@ FrameResult Odometry::processWindowed(const tracking::StereoFrame& frame) {
     return std::nullopt;
   });
   const auto keyframe_before = tracker_.keyframeTime();
-  r.track = tracker_.track(frame, T_w_b_pred, rotation_reliable);
+  r.track = tracker_.track(std::move(frame), T_w_b_pred, rotation_reliable);
   const tracking::FrameTrack& t = r.track;
   const bool aligned = t.aligned && t.self_check_passed;
   if (inertial_)
-    estimator_.addState(frame.t_ns, std::move(*pre));
+    estimator_.addState(t_ns, std::move(*pre));
   else
-    estimator_.addStateWithoutImu(frame.t_ns, aligned ? t.T_w_b : T_w_b_pred);
+    estimator_.addStateWithoutImu(t_ns, aligned ? t.T_w_b : T_w_b_pred);
   if (t.promoted_previous) estimator_.markKeyframe(t.reference_t_ns);
   bool link_good = false;
   if (aligned) {
@@ -164,7 +168,7 @@ FrameResult Odometry::processWindowed(const tracking::StereoFrame& frame) {
     // so does a frame whose keyframe is no longer in the window (after a restart).
     if (!link_good && !t.keyframe) r.forced_keyframe = tracker_.promoteLastFrame();
   }
-  if (t.keyframe || r.forced_keyframe) estimator_.markKeyframe(frame.t_ns);
+  if (t.keyframe || r.forced_keyframe) estimator_.markKeyframe(t_ns);
   if (tracker_.keyframeTime() != keyframe_before) closeLoops(&r);
 
   r.estimator = estimator_.optimize(link_good, tracker_.keyframeTime());
@@ -177,13 +181,13 @@ FrameResult Odometry::processWindowed(const tracking::StereoFrame& frame) {
     if (!x.v_w.allFinite() || x.v_w.norm() > config_.estimator.reset_velocity) x.v_w.setZero();
     if (!x.b_a.allFinite() || x.b_a.norm() > config_.estimator.reset_accel_bias) x.b_a.setZero();
     if (!x.b_g.allFinite() || x.b_g.norm() > config_.estimator.reset_gyro_bias) x.b_g = init_.gyro_bias;
-    restart(frame.t_ns, x, false);
+    restart(t_ns, x, false);
     ++resets_;
     r.event = "estimator reset: " + r.estimator.reset_reason;
   } else if (r.estimator.keyframe_left_window && tracker_.promoteLastFrame()) {
     // The keyframe was marginalised: later links need a reference in the window.
     r.forced_keyframe = true;
-    estimator_.markKeyframe(frame.t_ns);
+    estimator_.markKeyframe(t_ns);
     closeLoops(&r);
   }
   r.T_w_b = poseOf(estimator_.newest());

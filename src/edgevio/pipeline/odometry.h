@@ -54,16 +54,18 @@ class Odometry {
            const camera::StereoRectifier& rectifier, const std::vector<io::ImuSample>& imu,
            const imu::StaticInit& init);
 
-  FrameResult process(const tracking::StereoFrame& frame);
+  /// The frame's pyramid must be built with the config's vision options
+  /// (tracking::prepareFrame); a driver may do that on another thread.
+  FrameResult process(tracking::PreparedFrame frame);
 
   bool lost() const { return tracker_.lost(); }
   std::size_t resets() const { return resets_; }
   std::size_t loopClosures() const { return loop_closures_; }
 
  private:
-  FrameResult processEdgeOnly(const tracking::StereoFrame& frame);
-  FrameResult processWindowed(const tracking::StereoFrame& frame);
-  FrameResult initializeWindow(const tracking::StereoFrame& frame);
+  FrameResult processEdgeOnly(tracking::PreparedFrame frame);
+  FrameResult processWindowed(tracking::PreparedFrame frame);
+  FrameResult initializeWindow(tracking::PreparedFrame frame);
   void restart(std::int64_t t_ns, imu::NavState x, bool static_start);
   void closeLoops(FrameResult* r);
   std::optional<geometry::SO3> gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const;

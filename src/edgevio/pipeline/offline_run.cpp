@@ -6,7 +6,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <atomic>
+#include <exception>
 #include <memory>
+#include <thread>
 
 #include "edgevio/camera/stereo_rectifier.h"
 #include "edgevio/common/error.h"
@@ -14,6 +18,7 @@
 #include "edgevio/imu/gyro_integration.h"
 #include "edgevio/io/euroc_dataset.h"
 #include "edgevio/io/trajectory_io.h"
+#include "edgevio/pipeline/bounded_queue.h"
 #include "edgevio/pipeline/odometry.h"
 
 namespace edgevio::pipeline {
@@ -55,21 +60,98 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   io::Trajectory trajectory;
   const std::size_t step = static_cast<std::size_t>(req.skip) + 1;
   const std::size_t total = (pairs.size() + step - 1) / step;
+
+  // Three threads (METHOD.md §1): the driver reads and rectifies, the second
+  // builds edge pyramids, this one tracks and estimates. Offline, the queues
+  // block and every frame is processed in order: the result does not depend
+  // on thread timing. In real time the driver releases frames at their
+  // timestamps and drops those the pipeline has no room for.
+  struct Loaded {
+    std::int64_t t_ns = 0;
+    bool readable = false;
+    tracking::StereoFrame frame;
+    double driver_ms = 0.0;
+  };
+  struct Prepared {
+    std::int64_t t_ns = 0;
+    bool readable = false;
+    tracking::PreparedFrame frame;
+    double driver_ms = 0.0, prepare_ms = 0.0;
+  };
+  BoundedQueue<Loaded> loaded(2);
+  BoundedQueue<Prepared> prepared(2);
+  std::exception_ptr driver_error, prepare_error;
+  std::atomic<std::size_t> dropped{0};
+  const auto msSince = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  };
+  std::thread driver([&] {
+    try {
+      const auto start = std::chrono::steady_clock::now();
+      for (std::size_t i = 0; i < pairs.size(); i += step) {
+        if (req.realtime)
+          std::this_thread::sleep_until(start + std::chrono::nanoseconds(pairs[i].t_ns - pairs.front().t_ns));
+        const auto f0 = std::chrono::steady_clock::now();
+        Loaded item;
+        item.t_ns = pairs[i].t_ns;
+        if (std::optional<io::StereoImages> images = dataset.loadStereo(i)) {
+          item.readable = true;
+          item.frame.t_ns = images->t_ns;
+          rect.rectify(images->left, images->right, &item.frame.left, &item.frame.right);
+        }
+        item.driver_ms = msSince(f0);
+        if (!req.realtime)
+          loaded.push(std::move(item));
+        else if (!loaded.tryPush(std::move(item)))
+          ++dropped;
+      }
+    } catch (...) {
+      driver_error = std::current_exception();
+    }
+    loaded.close();
+  });
+  std::thread preparer([&] {
+    try {
+      while (std::optional<Loaded> item = loaded.pop()) {
+        const auto f0 = std::chrono::steady_clock::now();
+        Prepared p;
+        p.t_ns = item->t_ns;
+        p.readable = item->readable;
+        p.driver_ms = item->driver_ms;
+        if (item->readable) p.frame = tracking::prepareFrame(item->frame, rect, config.vision);
+        p.prepare_ms = msSince(f0);
+        prepared.push(std::move(p));
+      }
+    } catch (...) {
+      prepare_error = std::current_exception();
+      loaded.close();
+    }
+    prepared.close();
+  });
+  // Whatever happens below, the threads are stopped and joined.
+  struct Joiner {
+    std::function<void()> stop;
+    ~Joiner() { stop(); }
+  } joiner{[&] {
+    loaded.close();
+    prepared.close();
+    if (driver.joinable()) driver.join();
+    if (preparer.joinable()) preparer.join();
+  }};
+
   std::size_t done = 0;
-  for (std::size_t i = 0; i < pairs.size(); i += step) {
-    const auto f0 = std::chrono::steady_clock::now();
-    std::optional<io::StereoImages> images = dataset.loadStereo(i);
+  while (true) {
+    std::optional<Prepared> item = prepared.pop();
+    if (!item) break;
     ++done;
-    if (!images) {
+    if (!item->readable) {
       ++s.skipped_unreadable;
       continue;
     }
-    tracking::StereoFrame frame;
-    frame.t_ns = images->t_ns;
-    rect.rectify(images->left, images->right, &frame.left, &frame.right);
-    const FrameResult fr = odometry.process(frame);
+    const auto f0 = std::chrono::steady_clock::now();
+    const FrameResult fr = odometry.process(std::move(item->frame));
     const tracking::FrameTrack& t = fr.track;
-    const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count();
+    const double total_ms = item->driver_ms + item->prepare_ms + msSince(f0);
 
     io::TrajectorySample sample;
     sample.t_ns = t.t_ns;
@@ -114,8 +196,12 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
                   t.dt_ms - t.lines_ms, t.lines_ms, t.bm_ms, t.alignment.ms, e.solve_ms, e.marginalize_ms,
                   fr.loop_ran ? fr.loop.ms : 0.0, total_ms);
     frames_csv << row;
-    if (progress) progress(done, total, static_cast<double>(t.t_ns - pairs.front().t_ns) * 1e-9);
+    if (progress) progress(done + dropped, total, static_cast<double>(t.t_ns - pairs.front().t_ns) * 1e-9);
   }
+  joiner.stop();
+  if (driver_error) std::rethrow_exception(driver_error);
+  if (prepare_error) std::rethrow_exception(prepare_error);
+  s.dropped_frames = dropped;
   s.skipped_unreadable += dataset.unreadableImages(0) + dataset.unreadableImages(1) - s.skipped_unreadable;
   if (trajectory.empty()) throw InputError(req.dataset, 0, "no stereo pair could be read");
   io::writeTrajectoryTum((fs::path(req.out_dir) / "trajectory_tum.txt").string(), trajectory);
@@ -143,6 +229,8 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   j.key("estimator_resets").value(odometry.resets());
   j.key("loop_closures").value(odometry.loopClosures());
   j.key("skipped_unreadable_frames").value(s.skipped_unreadable);
+  j.key("realtime").value(req.realtime);
+  j.key("dropped_frames").value(s.dropped_frames);
   j.key("static_initialization").value(init.is_static);
   j.key("failed").value(s.failed);
   j.key("failure").value(s.failure);

@@ -1,7 +1,9 @@
 #pragma once
-// `edgevio run` in offline mode: the dataset is processed frame by frame on
-// the calling thread, so the same input and config give the same trajectory,
-// bit for bit. Writes to the output folder:
+// `edgevio run`: three threads (driver, pyramid, tracking + estimation)
+// joined by bounded queues. Offline (default) the queues block, so the same
+// input and config give the same trajectory, bit for bit; with `realtime`
+// frames are released at their timestamps and dropped (counted) when the
+// pipeline is behind. Writes to the output folder:
 //   trajectory_tum.txt, trajectory.csv  the causal body pose of every processed frame
 //   frames.csv                          per frame: keyframe, self check, points, iterations,
 //                                       mean distance, external check, estimator iterations,
@@ -21,11 +23,13 @@ struct RunRequest {
   std::string out_dir;
   std::string mode = "edge-only";
   int skip = 0;  ///< keep every (skip+1)-th stereo frame; the IMU is untouched
+  bool realtime = false;  ///< release frames at their timestamps; drop those the pipeline has no room for
 };
 
 struct RunSummary {
   std::size_t frames = 0, keyframes = 0, self_check_failures = 0, skipped_unreadable = 0;
   std::size_t external_check_rejections = 0, estimator_resets = 0, loop_closures = 0;
+  std::size_t dropped_frames = 0;  ///< real-time mode: frames dropped because the pipeline was behind
   std::vector<std::string> events;  ///< resets and IMU gaps, "t = … s: what"
   bool failed = false;
   std::string failure;

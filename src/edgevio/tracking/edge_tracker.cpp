@@ -60,13 +60,17 @@ AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, con
   return r;
 }
 
-FrameTrack EdgeTracker::track(const StereoFrame& frame, const std::optional<SO3>& R_prev_cur, const SE3& T_w_b_init) {
-  if (!keyframe_) return track(frame, T_w_b_init, false);
+PreparedFrame prepareFrame(const StereoFrame& frame, const camera::StereoRectifier& rect, const vision::VisionOptions& vision) {
+  return {frame.t_ns, frame.right, vision::buildEdgePyramid(frame.left, rect.rectifiedCamera(), vision)};
+}
+
+FrameTrack EdgeTracker::track(PreparedFrame frame, const std::optional<SO3>& R_prev_cur, const SE3& T_w_b_init) {
+  if (!keyframe_) return track(std::move(frame), T_w_b_init, false);
   // Prediction: rotation from the gyroscope, translation from the previous estimate(s).
   const SO3 R_pred = T_w_b_prev_.so3() * (R_prev_cur ? *R_prev_cur : SO3());
   Vec3 p_pred = T_w_b_prev_.translation();
   if (tracking_.translation_prior == "constant_velocity") p_pred += T_w_b_prev_.translation() - T_w_b_prev2_.translation();
-  return track(frame, SE3(R_pred, p_pred), R_prev_cur.has_value());
+  return track(std::move(frame), SE3(R_pred, p_pred), R_prev_cur.has_value());
 }
 
 void EdgeTracker::correctPoses(const std::function<std::optional<SE3>(std::int64_t)>& pose_of) {
@@ -93,11 +97,11 @@ std::optional<std::int64_t> EdgeTracker::keyframeTime() const {
   return keyframe_->data->t_ns;
 }
 
-FrameTrack EdgeTracker::track(const StereoFrame& frame, const SE3& T_w_b_pred, bool rotation_reliable) {
+FrameTrack EdgeTracker::track(PreparedFrame frame, const SE3& T_w_b_pred, bool rotation_reliable) {
   FrameTrack out;
   out.t_ns = frame.t_ns;
   last_t_ns_ = frame.t_ns;
-  vision::EdgePyramid pyr = vision::buildEdgePyramid(frame.left, rect_.rectifiedCamera(), vision_);
+  vision::EdgePyramid pyr = std::move(frame.pyramid);
   out.canny_ms = pyr.canny_ms;
   out.dt_ms = pyr.dt_ms;
   out.lines_ms = pyr.lines_ms;

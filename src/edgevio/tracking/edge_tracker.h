@@ -23,6 +23,18 @@ struct StereoFrame {
   cv::Mat left, right;
 };
 
+/// A stereo frame with its left edge pyramid built: what tracking consumes.
+/// The pyramid depends on the image alone, so a pipeline can build it ahead
+/// of tracking, on another thread.
+struct PreparedFrame {
+  std::int64_t t_ns = 0;
+  cv::Mat right;  ///< full resolution; block matching uses it if the frame becomes a keyframe
+  vision::EdgePyramid pyramid;
+};
+
+PreparedFrame prepareFrame(const StereoFrame& frame, const camera::StereoRectifier& rectifier,
+                           const vision::VisionOptions& vision);
+
 /// A keyframe's images as alignment needs them: its edge pyramid and its
 /// reference points with stereo depth. Immutable once made, shared with loop
 /// closure while the keyframe is in the window.
@@ -56,14 +68,14 @@ class EdgeTracker {
   /// The first frame starts at T_w_b_init and becomes the first keyframe.
   /// `R_prev_cur` is the body rotation since the previous frame (from the
   /// gyroscope) when available.
-  FrameTrack track(const StereoFrame& frame, const std::optional<geometry::SO3>& R_prev_cur,
+  FrameTrack track(PreparedFrame frame, const std::optional<geometry::SO3>& R_prev_cur,
                    const geometry::SE3& T_w_b_init = geometry::SE3());
 
   /// The same with a full-pose prediction (the IMU's, METHOD.md §5): the
   /// initial guess of the alignment, the pose of a first frame, and the
   /// frame's pose when the alignment fails. `rotation_reliable` enables the
   /// gyro check against the predicted rotation.
-  FrameTrack track(const StereoFrame& frame, const geometry::SE3& T_w_b_pred, bool rotation_reliable);
+  FrameTrack track(PreparedFrame frame, const geometry::SE3& T_w_b_pred, bool rotation_reliable);
 
   /// Replaces the poses of the keyframe and of the last frame with better
   /// estimates (the window's), looked up by timestamp.
