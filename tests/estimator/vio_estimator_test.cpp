@@ -68,7 +68,7 @@ RunStats drive(const Scenario& sc, double sigma_t, double sigma_r, int frames) {
   // The test's gauge and initial condition: start on the true pose and
   // velocity (what a static start or visual-inertial alignment provides);
   // the biases are unknown (zero).
-  est.initialize(t0, sc.truth(t0), true);
+  est.initialize(t0, sc.truth(t0), true, true);
   est.markKeyframe(t0);
   std::int64_t keyframe = t0;
   sim::Rng rng(5);
@@ -137,7 +137,7 @@ TEST(VioEstimator, ExternalCheckDropsACorruptedLink) {
   const Scenario sc("figure8");
   VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0]);
   const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL, t1 = t0 + 50000000;
-  est.initialize(t0, sc.truth(t0), false);
+  est.initialize(t0, sc.truth(t0), false, false);
   est.addState(t1, *est.preintegrateTo(sc.imu.samples, t1));
   const SE3 T_true = sc.camera(sc.truth(t1)).inverse() * sc.camera(sc.truth(t0));
   const Mat6 cov = Mat6::Identity() * 1e-6;
@@ -160,7 +160,7 @@ TEST(VioEstimator, NoticesGapsAndBlowUps) {
   const Scenario sc("figure8");
   VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0]);
   const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL;
-  est.initialize(t0, sc.truth(t0), false);
+  est.initialize(t0, sc.truth(t0), false, false);
   // A 0.2 s hole in the IMU stream: no preintegration across it.
   std::vector<io::ImuSample> gappy;
   for (const auto& s : sc.imu.samples)

@@ -193,6 +193,45 @@ TEST(OfflineRun, ShortRenderedSequenceInRealTimeAccountsForEveryFrame) {
   EXPECT_NE(summary.find("\"dropped_frames\": " + std::to_string(s.dropped_frames)), std::string::npos);
 }
 
+TEST(OfflineRun, ShortRenderedSequenceWithAnImuGapRestartsAndRecovers) {
+  // The rendered folder with 0.5 s of IMU readings removed in the middle
+  // (images shared through links, the IMU log rewritten).
+  namespace fs = std::filesystem;
+  TempDir out;
+  const fs::path src = fs::path(simulated().dataset) / "mav0", dst = fs::path(out.file("gap")) / "mav0";
+  fs::create_directories(dst / "imu0");
+  for (const char* d : {"cam0", "cam1", "state_groundtruth_estimate0"}) fs::create_directory_symlink(fs::absolute(src / d), dst / d);
+  fs::copy_file(src / "imu0" / "sensor.yaml", dst / "imu0" / "sensor.yaml");
+  std::istringstream in(test::readFile((src / "imu0" / "data.csv").string()));
+  std::ofstream imu(dst / "imu0" / "data.csv");
+  std::string line;
+  std::int64_t t0 = -1;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line[0] != '#') {
+      const std::int64_t t = std::stoll(line.substr(0, line.find(',')));
+      if (t0 < 0) t0 = t;
+      if (t - t0 > 2000000000LL && t - t0 < 2500000000LL) continue;
+    }
+    imu << line << "\n";
+  }
+  imu.close();
+  const RunSummary s = runOffline({out.file("gap"), out.file("run"), "edge+imu", 0}, Config{});
+  EXPECT_FALSE(s.failed) << s.failure;
+  EXPECT_GE(s.estimator_resets, 1u);
+  ASSERT_FALSE(s.events.empty());
+  EXPECT_NE(s.events.front().find("IMU gap"), std::string::npos) << s.events.front();
+  EXPECT_NE(test::readFile(out.file("run/summary.json")).find("IMU gap"), std::string::npos);
+  for (const auto& p : io::readTrajectory(out.file("run/trajectory_tum.txt"))) ASSERT_TRUE(p.T_w_b.translation().allFinite());
+  const eval::EvalResult r =
+      eval::evaluate(io::readTrajectory(simulated().dataset + "/mav0/state_groundtruth_estimate0/data.csv"),
+                     io::readTrajectory(out.file("run/trajectory_tum.txt")), eval::EvalOptions{});
+  std::printf("4 s figure8 with a 0.5 s IMU gap, edge+imu: %zu resets, ATE %.4f m\n", s.estimator_resets, r.ate_rmse_m);
+  // Tracking carries the pose across the gap, but after the restart the tilt
+  // is weakly observable for a while: measured 0.12 m against 0.017 m without
+  // the gap (a known weakness, see README). Bounded, finite, reported.
+  EXPECT_LT(r.ate_rmse_m, 0.25);
+}
+
 TEST(OfflineRun, SkipKeepsEveryKPlusOneFrame) {
   TempDir out;
   const RunSummary s = runOffline({simulated().dataset, out.path(), "edge-only", 3}, Config{});

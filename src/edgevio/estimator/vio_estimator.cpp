@@ -45,21 +45,22 @@ SolverOptions VioEstimator::solverOptions() const {
   return o;
 }
 
-void VioEstimator::initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known) {
+void VioEstimator::initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known, bool attitude_known) {
   window_ = Window{{}, {}, {}, {}, window_.T_b_c};
   window_.states.push_back({t_ns, x, false});
   predicted_newest_ = x;
   // Initial prior (METHOD.md §5 initialisation): position and yaw are the
-  // gauge and stay free. After a static start the attitude's roll and pitch
-  // (from the mean accelerometer reading, up to accel bias / g), the velocity
-  // and the biases are known to the init_* sigmas; tilt is otherwise nearly
-  // unobservable over the first frames (½gΔt² is 1 cm over 50 ms). Without
-  // one only the biases are loosely known.
+  // gauge and stay free. Roll and pitch, when known (from the mean
+  // accelerometer reading up to accel bias / g, or carried across a gap),
+  // get init_tilt_sigma_deg: tilt is otherwise nearly unobservable over the
+  // first frames (½gΔt² is 1 cm over 50 ms). A known velocity and gyro bias
+  // get their init_* sigmas; otherwise the velocity is free and the gyro bias
+  // loosely known.
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(15, 15);
   const double sv = options_.init_velocity_sigma, sa = options_.init_accel_bias_sigma;
   const double sg = velocity_known ? options_.init_gyro_bias_sigma : 10.0 * options_.init_gyro_bias_sigma;
-  if (velocity_known) {
-    H.block<3, 3>(imu::kV, imu::kV) = Mat3::Identity() / (sv * sv);
+  if (velocity_known) H.block<3, 3>(imu::kV, imu::kV) = Mat3::Identity() / (sv * sv);
+  if (attitude_known) {
     // Tilt: the world x and y components of the rotation error R·δθ.
     const double st = options_.init_tilt_sigma_deg * kDegToRad;
     const Mat3 R = x.R_w_b.matrix();

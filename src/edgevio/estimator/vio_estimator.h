@@ -41,8 +41,10 @@ class VioEstimator {
 
   /// Starts a new window with one state. `velocity_known`: x's velocity and
   /// gyro bias are known (a static start measured them: zero velocity and the
-  /// mean gyro reading), and the initial prior says so.
-  void initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known);
+  /// mean gyro reading); `attitude_known`: its roll and pitch are (a static
+  /// start, or a restart across an IMU gap that tracking bridged). The
+  /// initial prior says so.
+  void initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known, bool attitude_known);
   bool initialized() const { return !window_.states.empty(); }
 
   const imu::NavState& newest() const { return window_.states.back().x; }

@@ -51,9 +51,12 @@ FrameResult Odometry::processEdgeOnly(tracking::PreparedFrame frame) {
   return r;
 }
 
-void Odometry::restart(std::int64_t t_ns, imu::NavState x, bool static_start) {
-  estimator_.initialize(t_ns, x, static_start);
+void Odometry::restart(std::int64_t t_ns, imu::NavState x, bool velocity_known, bool attitude_known) {
+  estimator_.initialize(t_ns, x, velocity_known, attitude_known);
   keyframes_.clear();
+  // The next frames must link to a state in the new window: this frame
+  // becomes the keyframe (otherwise they would be dead-reckoned from a free velocity).
+  if (const auto kf = tracker_.keyframeTime(); !kf || *kf != t_ns) tracker_.promoteLastFrame();
   if (const auto kf = tracker_.keyframeData(); kf && kf->t_ns == t_ns) {
     estimator_.markKeyframe(t_ns);
     keyframes_[t_ns] = kf;
@@ -78,7 +81,7 @@ FrameResult Odometry::initializeWindow(tracking::PreparedFrame frame) {
   r.estimator_used = true;
   // Still inside the static window: the static start holds.
   const bool still_static = init_.is_static && static_cast<double>(t_ns - t_first_) * 1e-9 < config_.tracking.static_init_window_s;
-  restart(t_ns, x, inertial_ && still_static);
+  restart(t_ns, x, inertial_ && still_static, inertial_ && still_static);
   r.T_w_b = r.track.T_w_b;
   if (inertial_) r.state = estimator_.newest();
   return r;
@@ -131,7 +134,7 @@ FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
       imu::NavState x = last;
       x.R_w_b = r.track.T_w_b.so3();
       x.p_w = r.track.T_w_b.translation();
-      restart(t_ns, x, false);
+      restart(t_ns, x, false, true);  // the attitude and biases carry over; the velocity is re-estimated
       ++resets_;
       r.event = "no IMU coverage (or an IMU gap) since the previous frame: estimator restarted";
       r.T_w_b = r.track.T_w_b;
@@ -181,7 +184,7 @@ FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
     if (!x.v_w.allFinite() || x.v_w.norm() > config_.estimator.reset_velocity) x.v_w.setZero();
     if (!x.b_a.allFinite() || x.b_a.norm() > config_.estimator.reset_accel_bias) x.b_a.setZero();
     if (!x.b_g.allFinite() || x.b_g.norm() > config_.estimator.reset_gyro_bias) x.b_g = init_.gyro_bias;
-    restart(t_ns, x, false);
+    restart(t_ns, x, false, false);
     ++resets_;
     r.event = "estimator reset: " + r.estimator.reset_reason;
   } else if (r.estimator.keyframe_left_window && tracker_.promoteLastFrame()) {

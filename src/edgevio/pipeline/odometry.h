@@ -66,7 +66,7 @@ class Odometry {
   FrameResult processEdgeOnly(tracking::PreparedFrame frame);
   FrameResult processWindowed(tracking::PreparedFrame frame);
   FrameResult initializeWindow(tracking::PreparedFrame frame);
-  void restart(std::int64_t t_ns, imu::NavState x, bool static_start);
+  void restart(std::int64_t t_ns, imu::NavState x, bool velocity_known, bool attitude_known);
   void closeLoops(FrameResult* r);
   std::optional<geometry::SO3> gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const;
 
