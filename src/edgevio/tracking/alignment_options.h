@@ -15,7 +15,7 @@ struct AlignmentOptions {
   int min_points = 30;                        ///< fewer visible points at a level: the level is skipped [-]
   int max_points = 3000;                      ///< at most this many reference points per level, evenly strided; 0 = all [-]
   double self_check_max_mean_distance_px = 5.0;  ///< self check: mean υ at level 0 at most this [px]
-  double self_check_min_visible_ratio = 0.7;     ///< self check: at least this fraction of points in the image [-]
+  double self_check_min_visible_ratio = 0.5;     ///< self check: at least this fraction of points in the image [-]
 
   template <class Visitor>
   void visit(Visitor& v) {
