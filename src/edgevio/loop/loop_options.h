@@ -11,7 +11,7 @@ struct LoopOptions {
   int cross_check_level = 1;                 ///< the cross check aligns from the top of the pyramid down to this level (1: 188x120) [-]
   int max_coarse_attempts = 4;               ///< candidates cross-checked on the coarse levels per keyframe [-]
   int max_full_attempts = 2;                 ///< survivors re-aligned through all levels per keyframe [-]
-  double max_ms = 20.0;                      ///< no new attempt starts after this much time per keyframe [ms]
+  double max_ms = 20.0;                      ///< real-time mode: no new attempt starts after this much time per keyframe [ms]
   double coarse_max_mean_distance_px = 1.0;  ///< coarse self check: mean distance at cross_check_level, its pixels [px]
   double coarse_min_visible_ratio = 0.3;     ///< coarse self check: fraction of points in view [-]
   double max_disagreement_m = 0.05;          ///< the two directions' composition: translation off identity [m]
@@ -26,7 +26,7 @@ struct LoopOptions {
     v("cross_check_level", cross_check_level, "-", "the cross check aligns from the pyramid top down to this level (1 = 188x120; 2 = 94x60 was too coarse)");
     v("max_coarse_attempts", max_coarse_attempts, "-", "candidates cross-checked on the coarse levels per keyframe");
     v("max_full_attempts", max_full_attempts, "-", "survivors re-aligned through all levels per keyframe");
-    v("max_ms", max_ms, "ms", "no new attempt starts after this much loop-closure time per keyframe");
+    v("max_ms", max_ms, "ms", "real-time mode: no new attempt after this much loop-closure time per keyframe (offline: attempts only, for determinism)");
     v("coarse_max_mean_distance_px", coarse_max_mean_distance_px, "px", "coarse self check: mean distance at cross_check_level, in its pixels");
     v("coarse_min_visible_ratio", coarse_min_visible_ratio, "-", "coarse self check: fraction of points in view");
     v("max_disagreement_m", max_disagreement_m, "m", "cross check: composition of both directions, translation off identity");

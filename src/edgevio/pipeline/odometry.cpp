@@ -1,5 +1,7 @@
 #include "edgevio/pipeline/odometry.h"
 
+#include <limits>
+
 namespace edgevio::pipeline {
 
 using geometry::SE3;
@@ -18,7 +20,7 @@ std::string checkMode(const std::string& mode) {
 
 Odometry::Odometry(const std::string& mode, const Config& config, const camera::StereoRig& rig,
                    const camera::StereoRectifier& rectifier, const std::vector<io::ImuSample>& imu,
-                   const imu::StaticInit& init)
+                   const imu::StaticInit& init, bool realtime)
     : mode_(mode),
       inertial_(isImuMode(mode)),
       loop_(isLoopMode(mode)),
@@ -27,7 +29,9 @@ Odometry::Odometry(const std::string& mode, const Config& config, const camera::
       init_(init),
       T_b_c_(rectifier.T_b_rect(0)),
       tracker_(rectifier, config.vision, config.alignment, config.tracking),
-      estimator_(config.estimator, rig.imu, rectifier.T_b_rect(0), isImuMode(mode)) {}
+      estimator_(config.estimator, rig.imu, rectifier.T_b_rect(0), isImuMode(mode)) {
+  if (!realtime) config_.loop.max_ms = std::numeric_limits<double>::infinity();
+}
 
 FrameResult Odometry::process(tracking::PreparedFrame frame) {
   const std::int64_t t = frame.t_ns;

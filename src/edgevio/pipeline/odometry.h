@@ -49,10 +49,12 @@ std::string checkMode(const std::string& mode);
 
 class Odometry {
  public:
-  /// `imu` must outlive the object.
+  /// `imu` must outlive the object. `realtime`: time budgets (loop.max_ms)
+  /// apply; offline only the attempt counts bound work, so that the result
+  /// does not depend on the machine's speed.
   Odometry(const std::string& mode, const Config& config, const camera::StereoRig& rig,
            const camera::StereoRectifier& rectifier, const std::vector<io::ImuSample>& imu,
-           const imu::StaticInit& init);
+           const imu::StaticInit& init, bool realtime = false);
 
   /// The frame's pyramid must be built with the config's vision options
   /// (tracking::prepareFrame); a driver may do that on another thread.

@@ -55,7 +55,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
       imu::staticInitialization(dataset.imu(), pairs.front().t_ns, config.tracking.static_init_window_s,
                                 config.tracking.static_accel_std_max, config.tracking.static_gyro_std_max);
 
-  Odometry odometry(req.mode, config, dataset.calibration(), rect, dataset.imu(), init);
+  Odometry odometry(req.mode, config, dataset.calibration(), rect, dataset.imu(), init, req.realtime);
   RunSummary s;
   io::Trajectory trajectory;
   const std::size_t step = static_cast<std::size_t>(req.skip) + 1;
