@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   auto* run_cmd = app.add_subcommand("run", "Estimate a trajectory from a dataset");
   run_cmd->add_option("dataset", run.dataset, "Dataset folder (holding mav0/)")->required();
   run_cmd->add_option("--out", run.out, "Output folder")->required();
-  run_cmd->add_option("--mode", run.mode, "edge-only | edge+loop | edge+imu | edge+imu+loop")
+  run_cmd->add_option("--mode", run.mode, "edge+imu+loop (default, the full system) | edge+imu | edge+loop | edge-only")
       ->check(CLI::IsMember({"edge-only", "edge+loop", "edge+imu", "edge+imu+loop"}));
   run_cmd->add_option("--config", run.config, "Config file (YAML)");
   run_cmd->add_option("--skip", run.skip, "Keep every (K+1)-th stereo frame (the IMU is untouched)");

@@ -46,7 +46,7 @@ struct SimulateArgs {
 int simulate(const SimulateArgs& args, std::ostream& out, std::ostream& err);
 
 struct RunArgs {
-  std::string dataset, out, mode = "edge-only", config;
+  std::string dataset, out, mode = "edge+imu+loop", config;  ///< default: the full system
   int skip = 0;
   bool realtime = false;
 };

@@ -21,7 +21,7 @@ namespace edgevio::pipeline {
 struct RunRequest {
   std::string dataset;
   std::string out_dir;
-  std::string mode = "edge-only";
+  std::string mode = "edge+imu+loop";
   int skip = 0;  ///< keep every (skip+1)-th stereo frame; the IMU is untouched
   bool realtime = false;  ///< release frames at their timestamps; drop those the pipeline has no room for
 };
