@@ -44,12 +44,17 @@ struct Normal {
   MatrixXd H;
   VectorXd g;
   double cost = 0.0;
-  explicit Normal(std::size_t n) : H(MatrixXd::Zero(15 * static_cast<long>(n), 15 * static_cast<long>(n))), g(VectorXd::Zero(15 * static_cast<long>(n))) {}
+  bool cost_only = false;  ///< only the cost: no Jacobians, no H or g (windowCost)
+  explicit Normal(std::size_t n, bool only_cost = false)
+      : H(only_cost ? MatrixXd() : MatrixXd::Zero(15 * static_cast<long>(n), 15 * static_cast<long>(n))),
+        g(only_cost ? VectorXd() : VectorXd::Zero(15 * static_cast<long>(n))),
+        cost_only(only_cost) {}
 
   template <int R>
   void add(const Eigen::Matrix<double, R, 1>& r, const Eigen::Matrix<double, R, R>& W,
            const std::vector<std::pair<long, Eigen::Matrix<double, R, 15>>>& blocks) {
     cost += 0.5 * r.dot(W * r);
+    if (cost_only) return;
     for (std::size_t u = 0; u < blocks.size(); ++u) {
       const auto& [a, Ja] = blocks[u];
       const Eigen::Matrix<double, 15, R> JaT_W = Ja.transpose() * W;
@@ -78,13 +83,14 @@ void linearize(const Window& w, const SolverOptions& o, const std::map<std::size
   for (const InertialLink& l : w.inertial) {
     if (!use_inertial(l)) continue;
     imu::Mat15 Ji, Jj;
-    const Vec15 r = l.pre.residual(w.states[l.i].x, w.states[l.j].x, &Ji, &Jj);
+    const Vec15 r = l.pre.residual(w.states[l.i].x, w.states[l.j].x, n->cost_only ? nullptr : &Ji, n->cost_only ? nullptr : &Jj);
     n->add<15>(r, inertialInformation(l.pre), {{slot.at(l.i), Ji}, {slot.at(l.j), Jj}});
   }
   for (const VisualLink& l : w.visual) {
     if (!use_visual(l)) continue;
     Mat6x15 Jr, Jn;
-    const Vec6 r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c, &Jr, &Jn);
+    const Vec6 r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c, n->cost_only ? nullptr : &Jr,
+                                        n->cost_only ? nullptr : &Jn);
     const Mat6 W = huberWeightedInformation(l.link.information, r, o.huber_translation_m, o.huber_rotation_deg * kDegToRad);
     n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}});
   }
@@ -95,8 +101,9 @@ void linearize(const Window& w, const SolverOptions& o, const std::map<std::size
     VectorXd d(15 * static_cast<long>(m));
     for (std::size_t k = 0; k < m; ++k)
       d.segment<15>(15 * static_cast<long>(k)) = boxminus(w.states[w.prior.states[k]].x, w.prior.x0[k]);
-    const VectorXd grad = w.prior.b + w.prior.H * d;
     n->cost += 0.5 * d.dot(w.prior.H * d) + w.prior.b.dot(d);
+    if (n->cost_only) return;
+    const VectorXd grad = w.prior.b + w.prior.H * d;
     for (std::size_t a = 0; a < m; ++a) {
       const long sa = slot.at(w.prior.states[a]);
       n->g.segment<15>(15 * sa) += grad.segment<15>(15 * static_cast<long>(a));
@@ -143,7 +150,7 @@ double heading(const SO3& R, const Vec3& body_axis) {
 }  // namespace
 
 double windowCost(const Window& w, const SolverOptions& o) {
-  Normal n(w.states.size());
+  Normal n(w.states.size(), true);
   linearize(w, o, identitySlots(w.states.size()), true, [](const InertialLink&) { return true; },
             [](const VisualLink&) { return true; }, &n);
   return n.cost;

@@ -82,7 +82,6 @@ FrameResult Odometry::initializeWindow(tracking::PreparedFrame frame) {
     x.R_w_b = r.track.T_w_b.so3();
     x.p_w = r.track.T_w_b.translation();
   }
-  r.estimator_used = true;
   // Still inside the static window: the static start holds.
   const bool still_static = init_.is_static && static_cast<double>(t_ns - t_first_) * 1e-9 < config_.tracking.static_init_window_s;
   restart(t_ns, x, inertial_ && still_static, inertial_ && still_static);
@@ -124,7 +123,6 @@ FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
   if (!estimator_.initialized()) return initializeWindow(std::move(frame));
 
   FrameResult r;
-  r.estimator_used = true;
   const imu::NavState last = estimator_.newest();
   std::optional<imu::Preintegration> pre;
   SE3 T_w_b_pred = poseOf(last);

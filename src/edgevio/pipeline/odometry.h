@@ -31,7 +31,6 @@ namespace edgevio::pipeline {
 struct FrameResult {
   tracking::FrameTrack track;
   geometry::SE3 T_w_b;                   ///< the causal pose estimate of the frame
-  bool estimator_used = false;
   std::optional<imu::NavState> state;    ///< the newest window state (velocity, biases) when the estimator ran
   estimator::EstimatorUpdate estimator;
   std::string external_check = "-";      ///< accepted | rejected | no reference | - (no link offered, or no IMU)
