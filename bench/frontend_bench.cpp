@@ -62,6 +62,20 @@ void BM_DistanceTransformAllLevels(benchmark::State& state) {
 }
 BENCHMARK(BM_DistanceTransformAllLevels)->Unit(benchmark::kMillisecond);
 
+// OpenCV's exact transform (no nearest pixel) on the same maps, for reference.
+void BM_OpenCvDistanceTransformAllLevels(benchmark::State& state) {
+  const Data& d = data();
+  cv::Mat background, dist;
+  for (auto _ : state)
+    for (const auto& level : d.cur_pyr.levels) {
+      cv::compare(level.edges, 0, background, cv::CMP_EQ);
+      cv::distanceTransform(background, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+      benchmark::DoNotOptimize(dist);
+    }
+  state.SetLabel("cv::distanceTransform DIST_MASK_PRECISE, for reference");
+}
+BENCHMARK(BM_OpenCvDistanceTransformAllLevels)->Unit(benchmark::kMillisecond);
+
 void BM_EdgeLinesLevel0(benchmark::State& state) {
   const Data& d = data();
   const auto& level = d.cur_pyr.levels[0];

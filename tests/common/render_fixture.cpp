@@ -23,7 +23,8 @@ tracking::StereoFrame RenderFixture::frame(const geometry::SE3& T_w_b, std::int6
   renderer_->render(T_w_b, {0.7, 0.2, 2.0}, noise_key, &raw[0], &raw[1]);
   tracking::StereoFrame f;
   f.t_ns = t_ns;
-  rect_->rectify(raw[0], raw[1], &f.left, &f.right);
+  f.left = rect_->rectify(0, raw[0]);
+  f.right = rect_->rectify(1, raw[1]);
   return f;
 }
 

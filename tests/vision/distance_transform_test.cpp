@@ -37,6 +37,27 @@ TEST(DistanceTransform, ExactAgainstBruteForce) {
   }
 }
 
+TEST(DistanceTransform, NearestEdgePixelIsExact) {
+  // On a flat image every edge's line sits on its pixel, so the nearest line
+  // of a pixel is its nearest edge pixel: at exactly the distance V.
+  for (double density : {0.002, 0.05}) {
+    const cv::Mat e = randomEdges(83, 57, density, 7 + static_cast<std::uint64_t>(density * 1e3));
+    const DistanceTransform dt(e, cv::Mat(e.size(), CV_8UC1, cv::Scalar(128)));
+    std::vector<cv::Point> pts;
+    cv::findNonZero(e, pts);
+    for (int v = 0; v < e.rows; v += 3)
+      for (int u = 0; u < e.cols; u += 5) {
+        double best = 1e9;
+        for (const auto& p : pts) best = std::min(best, std::hypot(p.x - u, p.y - v));
+        Vec2 p, n;
+        dt.nearestLine(u, v, &p, &n);
+        EXPECT_NE(e.at<std::uint8_t>(static_cast<int>(p.y()), static_cast<int>(p.x())), 0);
+        EXPECT_NEAR((p - Vec2(u, v)).norm(), best, 1e-6) << u << "," << v;
+        EXPECT_NEAR(dt.distance().at<float>(v, u), best, 1e-4);
+      }
+  }
+}
+
 TEST(DistanceTransform, EdgeCases) {
   cv::Mat none = cv::Mat::zeros(20, 30, CV_8UC1);
   const DistanceTransform empty(none, none);  // no edge at all: large distances, no crash

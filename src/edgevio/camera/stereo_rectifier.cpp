@@ -46,12 +46,12 @@ StereoRectifier::StereoRectifier(const StereoRig& rig, const RectificationOption
   if (c0.distortion == Distortion::kEquidistant) {
     cv::fisheye::stereoRectify(K0, D0, K1, D1, size, R, T, R0, R1, P0, P1, Q, cv::CALIB_ZERO_DISPARITY, size,
                                options.alpha);
-    cv::fisheye::initUndistortRectifyMap(K0, D0, R0, P0, size, CV_32FC1, map_x_[0], map_y_[0]);
-    cv::fisheye::initUndistortRectifyMap(K1, D1, R1, P1, size, CV_32FC1, map_x_[1], map_y_[1]);
+    cv::fisheye::initUndistortRectifyMap(K0, D0, R0, P0, size, CV_16SC2, map_x_[0], map_y_[0]);
+    cv::fisheye::initUndistortRectifyMap(K1, D1, R1, P1, size, CV_16SC2, map_x_[1], map_y_[1]);
   } else {
     cv::stereoRectify(K0, D0, K1, D1, size, R, T, R0, R1, P0, P1, Q, cv::CALIB_ZERO_DISPARITY, options.alpha, size);
-    cv::initUndistortRectifyMap(K0, D0, R0, P0, size, CV_32FC1, map_x_[0], map_y_[0]);
-    cv::initUndistortRectifyMap(K1, D1, R1, P1, size, CV_32FC1, map_x_[1], map_y_[1]);
+    cv::initUndistortRectifyMap(K0, D0, R0, P0, size, CV_16SC2, map_x_[0], map_y_[0]);
+    cv::initUndistortRectifyMap(K1, D1, R1, P1, size, CV_16SC2, map_x_[1], map_y_[1]);
   }
   rectified_.width = c0.width;
   rectified_.height = c0.height;
@@ -69,8 +69,14 @@ StereoRectifier::StereoRectifier(const StereoRig& rig, const RectificationOption
 }
 
 void StereoRectifier::rectify(const cv::Mat& left_raw, const cv::Mat& right_raw, cv::Mat* left, cv::Mat* right) const {
-  cv::remap(left_raw, *left, map_x_[0], map_y_[0], cv::INTER_LINEAR, cv::BORDER_CONSTANT);
-  cv::remap(right_raw, *right, map_x_[1], map_y_[1], cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+  *left = rectify(0, left_raw);
+  *right = rectify(1, right_raw);
+}
+
+cv::Mat StereoRectifier::rectify(int i, const cv::Mat& raw) const {
+  cv::Mat out;
+  cv::remap(raw, out, map_x_[i], map_y_[i], cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+  return out;
 }
 
 Vec2 StereoRectifier::rectifyPoint(int i, const Vec2& raw_uv) const {

@@ -15,7 +15,11 @@ class StereoRectifier {
 
   /// Rectifies a raw 8-bit pair (sizes must match the calibration).
   void rectify(const cv::Mat& left_raw, const cv::Mat& right_raw, cv::Mat* left, cv::Mat* right) const;
+  /// Rectifies the raw 8-bit image of camera i (0 left, 1 right).
+  cv::Mat rectify(int i, const cv::Mat& raw) const;
 
+  /// Raw camera i as calibrated.
+  const CameraModel& rawCamera(int i) const { return rig_.cam[i]; }
   /// The rectified camera shared by both images (no distortion).
   const CameraModel& rectifiedCamera() const { return rectified_; }
   /// Distance between the two rectified optical centres [m]; disparity d gives depth f·b/d.
@@ -30,6 +34,8 @@ class StereoRectifier {
   CameraModel rectified_;
   double baseline_ = 0.0;
   geometry::SE3 T_b_rect_[2];
+  // Fixed-point tables (CV_16SC2 integer pixel + CV_16UC1 1/32-pixel
+  // interpolation index): remap runs about twice as fast as with float tables.
   cv::Mat map_x_[2], map_y_[2];
   Mat3 R_rect_raw_[2];  // rotation from raw camera i to rectified camera i
 };

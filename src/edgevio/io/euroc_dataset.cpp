@@ -101,13 +101,21 @@ double EurocDataset::durationSeconds() const {
   return static_cast<double>(pairs_.back().t_ns - pairs_.front().t_ns) * 1e-9;
 }
 
-std::optional<cv::Mat> EurocDataset::loadImage(int cam, const ImageRecord& rec) {
-  cv::Mat img;
+cv::Mat decodeGrayImage(const std::string& path) {
   try {
-    img = cv::imread(rec.path, cv::IMREAD_GRAYSCALE);
+    return cv::imread(path, cv::IMREAD_GRAYSCALE);
   } catch (const cv::Exception&) {
-    img.release();
+    return {};
   }
+}
+
+std::optional<cv::Mat> EurocDataset::loadImage(std::size_t i, int cam) {
+  const StereoRecord& rec = pairs_.at(i);
+  return loadImage(cam, cam == 0 ? rec.left : rec.right);
+}
+
+std::optional<cv::Mat> EurocDataset::loadImage(int cam, const ImageRecord& rec) {
+  cv::Mat img = decodeGrayImage(rec.path);
   if (img.empty()) {
     ++unreadable_[cam];
     warnings_.push_back(rec.path + ": image does not decode, frame skipped");

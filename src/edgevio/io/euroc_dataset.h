@@ -68,6 +68,8 @@ class EurocDataset {
   /// Decodes pair i. Returns nullopt (counted, with a warning) when an image
   /// fails to decode; throws InputError when its size differs from the calibration.
   std::optional<StereoImages> loadStereo(std::size_t i);
+  /// Decodes camera `cam`'s image of pair i, as loadStereo does.
+  std::optional<cv::Mat> loadImage(std::size_t i, int cam);
 
  private:
   std::vector<ImageRecord> readImageList(int cam);
@@ -86,5 +88,9 @@ class EurocDataset {
   std::size_t unreadable_[2] = {0, 0};
   std::size_t unpaired_[2] = {0, 0};
 };
+
+/// Decodes an 8-bit grey image; empty when the file is missing or does not
+/// decode. No side effects, so any thread may call it.
+cv::Mat decodeGrayImage(const std::string& path);
 
 }  // namespace edgevio::io

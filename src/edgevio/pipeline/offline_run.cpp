@@ -94,10 +94,16 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
         const auto f0 = std::chrono::steady_clock::now();
         Loaded item;
         item.t_ns = pairs[i].t_ns;
-        if (std::optional<io::StereoImages> images = dataset.loadStereo(i)) {
+        if (std::optional<cv::Mat> left = dataset.loadImage(i, 0)) {
           item.readable = true;
-          item.frame.t_ns = images->t_ns;
-          rect.rectify(images->left, images->right, &item.frame.left, &item.frame.right);
+          item.frame.t_ns = pairs[i].t_ns;
+          item.frame.left = rect.rectify(0, *left);
+          // Decoded by the tracking thread if the frame becomes a keyframe.
+          item.frame.right = tracking::LazyImage([&rect, path = pairs[i].right.path] {
+            const cv::Mat raw = io::decodeGrayImage(path);
+            const camera::CameraModel& m = rect.rawCamera(1);
+            return raw.cols == m.width && raw.rows == m.height ? rect.rectify(1, raw) : cv::Mat();
+          });
         }
         item.driver_ms = msSince(f0);
         if (!req.realtime)
@@ -166,10 +172,12 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
     s.keyframes += t.keyframe + t.promoted_previous + fr.forced_keyframe;
     s.self_check_failures += t.aligned && !t.self_check_passed;
     s.external_check_rejections += fr.external_check == "rejected";
-    if (!fr.event.empty()) {
+    for (const std::string& event :
+         {fr.event, std::string(t.right_image_unreadable ? "right image unreadable: keyframe without depth" : "")}) {
+      if (event.empty()) continue;
       char at[64];
       std::snprintf(at, sizeof at, "t = %.3f s: ", static_cast<double>(t.t_ns - pairs.front().t_ns) * 1e-9);
-      s.events.push_back(at + fr.event);
+      s.events.push_back(at + event);
       if (event_log) event_log(s.events.back());
     }
     if (odometry.lost() && !s.failed) {

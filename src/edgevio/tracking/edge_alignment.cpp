@@ -25,30 +25,38 @@ std::string AlignmentOptions::validate() const {
   return {};
 }
 
-bool projectWithJacobian(const Vec3& P, const SE3& T, const vision::LevelCamera& c, Vec2* uv, Jacobian26* J) {
-  const Vec3 Pc = T * P;
+namespace {
+
+/// T as a rotation matrix and translation, converted once per pass over the
+/// points instead of once per point.
+struct PoseRt {
+  explicit PoseRt(const SE3& T) : R(T.rotationMatrix()), t(T.translation()) {}
+  Mat3 R;
+  Vec3 t;
+};
+
+bool project(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, Vec2* uv, Jacobian26* J) {
+  const Vec3 Pc = T.R * P + T.t;
   if (Pc.z() <= 1e-6) return false;
   const double iz = 1.0 / Pc.z();
-  *uv = Vec2(c.fx * Pc.x() * iz + c.cx, c.fy * Pc.y() * iz + c.cy);
+  const double x = Pc.x() * iz, y = Pc.y() * iz;
+  *uv = Vec2(c.fx * x + c.cx, c.fy * y + c.cy);
   if (J) {
-    Eigen::Matrix<double, 2, 3> dpi;
-    dpi << c.fx * iz, 0.0, -c.fx * Pc.x() * iz * iz,  //
-        0.0, c.fy * iz, -c.fy * Pc.y() * iz * iz;
-    // T·exp(ξ)·P ≈ T·(P + δp + δθ × P): ∂P'/∂ξ = R·[I | −hat(P)].
-    Eigen::Matrix<double, 3, 6> dP;
-    const Mat3 R = T.rotationMatrix();
-    dP.leftCols<3>() = R;
-    dP.rightCols<3>() = -R * hat(P);
-    *J = dpi * dP;
+    // T·exp(ξ)·P ≈ T·(P + δp + δθ × P): ∂P'/∂ξ = R·[I | −hat(P)]. With A = ∂π/∂P'·R
+    // (2x3), ∂uv/∂ξ = [A | −A·hat(P)], and row a of −A·hat(P) is (P × a)ᵀ.
+    const Vec3 a0 = c.fx * iz * (T.R.row(0) - x * T.R.row(2)).transpose();
+    const Vec3 a1 = c.fy * iz * (T.R.row(1) - y * T.R.row(2)).transpose();
+    J->row(0) << a0.transpose(), P.cross(a0).transpose();
+    J->row(1) << a1.transpose(), P.cross(a1).transpose();
   }
   return true;
 }
 
-bool edgeResidual(const Vec3& P, const SE3& T, const vision::LevelCamera& c, const vision::DistanceTransform& dt,
-                  int border, double* r, Jacobian16* J, bool point_to_line, double* distance) {
+bool residual(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, const vision::DistanceTransform& dt,
+              int border, double* r, Jacobian16* J, bool point_to_line, double* distance) {
   Vec2 uv;
   Jacobian26 Juv;
-  if (!projectWithJacobian(P, T, c, &uv, J ? &Juv : nullptr)) return false;
+  if (!project(P, T, c, &uv, J ? &Juv : nullptr)) return false;
   if (uv.x() < border || uv.y() < border || uv.x() > c.width - 1 - border || uv.y() > c.height - 1 - border) return false;
   if (point_to_line && dt.hasLines()) {
     if (distance) *distance = dt.value(uv.x(), uv.y());
@@ -64,6 +72,17 @@ bool edgeResidual(const Vec3& P, const SE3& T, const vision::LevelCamera& c, con
   *r = v;
   if (J) *J = gu * Juv.row(0) + gv * Juv.row(1);
   return true;
+}
+
+}  // namespace
+
+bool projectWithJacobian(const Vec3& P, const SE3& T, const vision::LevelCamera& c, Vec2* uv, Jacobian26* J) {
+  return project(P, PoseRt(T), c, uv, J);
+}
+
+bool edgeResidual(const Vec3& P, const SE3& T, const vision::LevelCamera& c, const vision::DistanceTransform& dt,
+                  int border, double* r, Jacobian16* J, bool point_to_line, double* distance) {
+  return residual(P, PoseRt(T), c, dt, border, r, J, point_to_line, distance);
 }
 
 namespace {
@@ -84,22 +103,31 @@ LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const SE3& T, 
       o.max_points > 0 && points.size() > static_cast<std::size_t>(o.max_points) ? (points.size() + static_cast<std::size_t>(o.max_points) - 1) / static_cast<std::size_t>(o.max_points) : 1;
   Jacobian16 J;
   double r = 0.0, dist = 0.0;
+  const PoseRt Trt(T);
+  // Upper triangle of Σ w·JᵀJ, row by row (21 entries), and Σ w·r·Jᵀ.
+  double h[21] = {};
   // The distance field's consistent pull towards edges gives the wide basin
   // on coarse levels; the line residual refines on the finest one.
   const bool p2l = o.residual == "point_to_line" && finest;
   for (std::size_t idx = 0; idx < points.size(); idx += stride) {
     const Eigen::Vector3f& pf = points[idx];
     ++s.considered;
-    if (!edgeResidual(pf.cast<double>(), T, level.camera, level.dt, o.border_px, &r, &J, p2l, &dist)) continue;
+    if (!residual(pf.cast<double>(), Trt, level.camera, level.dt, o.border_px, &r, &J, p2l, &dist)) continue;
     // Weights from the distance V: the robust kernel judges how far the point
     // is from any edge, whichever residual is minimised.
     const double w = laplacian ? std::exp(-dist) : 1.0 / (1.0 + dist * dist / o.cauchy_c2);
-    s.H.selfadjointView<Eigen::Upper>().rankUpdate(J.transpose(), w);
+    int k = 0;
+    for (int i = 0; i < 6; ++i) {
+      const double wji = w * J[i];
+      for (int j = i; j < 6; ++j) h[k++] += wji * J[j];
+    }
     s.g += w * r * J.transpose();
     s.sum_r += dist;
     ++s.visible;
   }
-  s.H = s.H.selfadjointView<Eigen::Upper>();
+  int k = 0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j) s.H(i, j) = s.H(j, i) = h[k++];
   return s;
 }
 

@@ -25,11 +25,16 @@ EdgeTracker::EdgeTracker(const camera::StereoRectifier& rectifier, const vision:
                          const AlignmentOptions& alignment, const TrackingOptions& tracking)
     : rect_(rectifier), vision_(vision), alignment_(alignment), tracking_(tracking), T_b_c_(rectifier.T_b_rect(0)) {}
 
-void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const SE3& T_w_c, std::int64_t t_ns,
+void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const LazyImage& right_full, const SE3& T_w_c, std::int64_t t_ns,
                                FrameTrack* out) {
   auto data = std::make_shared<KeyframeData>();
   data->t_ns = t_ns;
-  data->depth = vision::computeKeyframeDepth(pyramid, vision::downsample2(right_full), rect_.baseline(), vision_);
+  if (right_full.get().empty()) {  // no depth: alignment to it fails and tracking moves on to a new keyframe
+    out->right_image_unreadable = true;
+    data->depth.points.assign(pyramid.levels.size(), {});
+  } else {
+    data->depth = vision::computeKeyframeDepth(pyramid, vision::downsample2(right_full.get()), rect_.baseline(), vision_);
+  }
   data->pyramid = std::move(pyramid);
   out->bm_ms = data->depth.bm_ms;
   out->keyframe = true;

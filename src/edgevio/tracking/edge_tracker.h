@@ -17,10 +17,33 @@
 
 namespace edgevio::tracking {
 
+/// An image, or how to get it. Only keyframes need the right image (block
+/// matching, about one frame in ten), so a driver may hand over a loader that
+/// decodes and rectifies it on first use: that halves the decoding work.
+class LazyImage {
+ public:
+  LazyImage() = default;
+  LazyImage(cv::Mat image) : image_(std::move(image)) {}  // NOLINT: an image is its own loader
+  explicit LazyImage(std::function<cv::Mat()> load) : load_(std::move(load)) {}
+  /// The image, loaded on the first call; empty when loading failed.
+  const cv::Mat& get() const {
+    if (load_) {
+      image_ = load_();
+      load_ = nullptr;
+    }
+    return image_;
+  }
+
+ private:
+  mutable cv::Mat image_;
+  mutable std::function<cv::Mat()> load_;
+};
+
 /// A rectified stereo pair at full resolution.
 struct StereoFrame {
   std::int64_t t_ns = 0;
-  cv::Mat left, right;
+  cv::Mat left;
+  LazyImage right;
 };
 
 /// A stereo frame with its left edge pyramid built: what tracking consumes.
@@ -28,7 +51,7 @@ struct StereoFrame {
 /// of tracking, on another thread.
 struct PreparedFrame {
   std::int64_t t_ns = 0;
-  cv::Mat right;  ///< full resolution; block matching uses it if the frame becomes a keyframe
+  LazyImage right;  ///< full resolution; block matching uses it if the frame becomes a keyframe
   vision::EdgePyramid pyramid;
 };
 
@@ -53,6 +76,7 @@ struct FrameTrack {
   bool self_check_passed = false;
   bool gyro_check_failed = false; ///< the first alignment disagreed with the gyroscope (re-aligned)
   bool promoted_previous = false; ///< alignment to the keyframe failed; the previous frame became a keyframe
+  bool right_image_unreadable = false;  ///< a new keyframe's right image did not decode: it has no depth
   std::string keyframe_reason;    ///< why it became a keyframe
   AlignmentResult alignment;
   int reference_points = 0;       ///< level-0 reference points of the keyframe it was aligned to
@@ -95,7 +119,7 @@ class EdgeTracker {
     std::shared_ptr<const KeyframeData> data;
     geometry::SE3 T_w_c;
   };
-  void makeKeyframe(vision::EdgePyramid pyramid, const cv::Mat& right_full, const geometry::SE3& T_w_c, std::int64_t t_ns,
+  void makeKeyframe(vision::EdgePyramid pyramid, const LazyImage& right_full, const geometry::SE3& T_w_c, std::int64_t t_ns,
                     FrameTrack* out);
   /// Aligns `pyr` to the current keyframe from `T_w_b_pred`, with the gyro check.
   AlignmentResult alignToKeyframe(const vision::EdgePyramid& pyr, const geometry::SE3& T_w_b_pred, bool have_gyro,
@@ -104,7 +128,7 @@ class EdgeTracker {
   /// frame fails to align to the old one (its pose is already known).
   struct Previous {
     vision::EdgePyramid pyramid;
-    cv::Mat right;
+    LazyImage right;
     geometry::SE3 T_w_b;
     std::int64_t t_ns = 0;
   };

@@ -5,21 +5,109 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace edgevio::vision {
 
+namespace {
+
+constexpr int kNoEdge = 0xFFFF;  ///< column distance of a column without edges
+
+/// Exact Euclidean distance of every pixel to the nearest non-zero pixel of
+/// `edges` and, when `nearest` is given, that pixel's linear index v·W + u
+/// (Felzenszwalb & Huttenlocher 2012): a 1-D transform down every column
+/// gives g, the distance to the column's nearest edge; along every row the
+/// lower envelope of the parabolas (u − q)² + g(q)² gives the distance. In an
+/// image without edges every pixel is `far` away and has index −1.
+void exactDistanceTransform(const cv::Mat& edges, float far, cv::Mat* dist, cv::Mat* nearest) {
+  const int W = edges.cols, H = edges.rows;
+  const auto at = [W](int v) { return static_cast<std::size_t>(v) * static_cast<std::size_t>(W); };
+  std::vector<std::uint16_t> g(at(H)), row(nearest ? at(H) : 0);
+  for (int v = 0; v < H; ++v) {
+    const std::uint8_t* e = edges.ptr<std::uint8_t>(v);
+    std::uint16_t* gr = g.data() + at(v);
+    if (v == 0) {
+      for (int u = 0; u < W; ++u) gr[u] = e[u] ? 0 : kNoEdge;
+    } else {
+      const std::uint16_t* gp = gr - W;
+      for (int u = 0; u < W; ++u) gr[u] = e[u] ? 0 : static_cast<std::uint16_t>(std::min(gp[u] + 1, kNoEdge));
+    }
+  }
+  for (int v = H - 2; v >= 0; --v) {
+    std::uint16_t* gr = g.data() + at(v);
+    const std::uint16_t* gb = gr + W;
+    for (int u = 0; u < W; ++u) gr[u] = static_cast<std::uint16_t>(std::min<int>(gr[u], gb[u] + 1));
+  }
+  if (nearest)  // the row of the nearest edge in the column, from the final g
+    for (int v = 0; v < H; ++v) {
+      const std::uint16_t* gr = g.data() + at(v);
+      std::uint16_t* rr = row.data() + at(v);
+      const std::uint16_t* rp = v > 0 ? rr - W : nullptr;
+      for (int u = 0; u < W; ++u)
+        rr[u] = gr[u] == 0 ? static_cast<std::uint16_t>(v)
+                : (rp && gr[u - W] + 1 == gr[u] && gr[u - W] != kNoEdge) ? rp[u]
+                                                                         : static_cast<std::uint16_t>(v + gr[u]);
+    }
+  dist->create(H, W, CV_32FC1);
+  if (nearest) nearest->create(H, W, CV_32SC1);
+  // Envelope: apex[k] is the column of its k-th parabola, key[k] = g² + q² of
+  // it, from[k] where it starts to be the lowest. A multiplication by 1/(2d)
+  // replaces the division of the intersection; in double precision it
+  // decides every integer pixel exactly.
+  std::vector<int> apex(static_cast<std::size_t>(W)), key(static_cast<std::size_t>(W));
+  std::vector<double> from(static_cast<std::size_t>(W) + 1), half_inverse(static_cast<std::size_t>(W));
+  for (int d = 1; d < W; ++d) half_inverse[static_cast<std::size_t>(d)] = 0.5 / d;
+  for (int v = 0; v < H; ++v) {
+    const std::uint16_t* gr = g.data() + at(v);
+    float* dr = dist->ptr<float>(v);
+    int* nr = nearest ? nearest->ptr<int>(v) : nullptr;
+    int k = -1;
+    for (int q = 0; q < W; ++q) {
+      if (gr[q] == kNoEdge) continue;
+      const int kq = gr[q] * gr[q] + q * q;
+      double s = -std::numeric_limits<double>::infinity();
+      while (k >= 0) {
+        const auto kk = static_cast<std::size_t>(k);
+        s = (kq - key[kk]) * half_inverse[static_cast<std::size_t>(q - apex[kk])];
+        if (s > from[kk]) break;
+        --k;
+        s = -std::numeric_limits<double>::infinity();
+      }
+      const auto kn = static_cast<std::size_t>(++k);
+      apex[kn] = q;
+      key[kn] = kq;
+      from[kn] = s;
+    }
+    if (k < 0) {  // no edge in the image at all
+      std::fill(dr, dr + W, far);
+      if (nr) std::fill(nr, nr + W, -1);
+      continue;
+    }
+    from[static_cast<std::size_t>(k) + 1] = std::numeric_limits<double>::infinity();
+    std::size_t j = 0;
+    for (int u = 0; u < W; ++u) {
+      while (from[j + 1] < u) ++j;
+      const int q = apex[j];
+      dr[u] = static_cast<float>((u - q) * (u - q) + gr[q] * gr[q]);
+      if (nr) nr[u] = row[at(v) + static_cast<std::size_t>(q)] * W + q;
+    }
+    for (int u = 0; u < W; ++u) dr[u] = std::sqrt(dr[u]);  // a separate loop, so that it vectorises
+  }
+}
+
+}  // namespace
+
 DistanceTransform::DistanceTransform(const cv::Mat& edges, const cv::Mat& image) {
-  cv::Mat background;
-  cv::compare(edges, 0, background, cv::CMP_EQ);  // distanceTransform measures to the nearest zero pixel
-  cv::distanceTransform(background, dist_, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  cv::Mat nearest_pixel;
+  exactDistanceTransform(edges, static_cast<float>(edges.cols + edges.rows), &dist_, image.empty() ? nullptr : &nearest_pixel);
   if (!image.empty()) {
     const auto t0 = std::chrono::steady_clock::now();
-    buildLines(edges, image);
+    buildLines(edges, image, std::move(nearest_pixel));
     lines_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
 }
 
-void DistanceTransform::buildLines(const cv::Mat& edges, const cv::Mat& image) {
+void DistanceTransform::buildLines(const cv::Mat& edges, const cv::Mat& image, cv::Mat&& nearest_pixel) {
   const int W = edges.cols, H = edges.rows;
   cv::Mat gx, gy, mag;
   cv::Sobel(image, gx, CV_32F, 1, 0, 3);
@@ -32,13 +120,13 @@ void DistanceTransform::buildLines(const cv::Mat& edges, const cv::Mat& image) {
     const float* r1 = mag.ptr<float>(y0 + 1);
     return (1 - b) * ((1 - a) * r0[x0] + a * r0[x0 + 1]) + b * ((1 - a) * r1[x0] + a * r1[x0 + 1]);
   };
-  // Sub-pixel lines of the edge pixels; `nearest_` first holds each pixel's own line.
-  nearest_.create(H, W, CV_32SC1);
-  nearest_.setTo(-1);
+  // Sub-pixel lines of the edge pixels, indexed by their pixel.
+  std::vector<int> line_of_pixel(static_cast<std::size_t>(W) * static_cast<std::size_t>(H), -1);
   lines_.reserve(static_cast<std::size_t>(cv::countNonZero(edges)));
-  for (int v = 0; v < H; ++v)
+  for (int v = 0; v < H; ++v) {
+    const std::uint8_t* e = edges.ptr<std::uint8_t>(v);
     for (int u = 0; u < W; ++u) {
-      if (!edges.at<std::uint8_t>(v, u)) continue;
+      if (!e[u]) continue;
       float nx = gx.at<float>(v, u), ny = gy.at<float>(v, u);
       const float norm = mag.at<float>(v, u);
       Eigen::Vector4f line(static_cast<float>(u), static_cast<float>(v), 1.0f, 0.0f);
@@ -52,60 +140,20 @@ void DistanceTransform::buildLines(const cv::Mat& edges, const cv::Mat& image) {
         const float offset = den < -1e-6f ? std::clamp(0.5f * (mm - mp) / den, -0.5f, 0.5f) : 0.0f;
         line = Eigen::Vector4f(static_cast<float>(u) + offset * nx, static_cast<float>(v) + offset * ny, nx, ny);
       }
-      nearest_.at<int>(v, u) = static_cast<int>(lines_.size());
+      line_of_pixel[static_cast<std::size_t>(v) * static_cast<std::size_t>(W) + static_cast<std::size_t>(u)] =
+          static_cast<int>(lines_.size());
       lines_.push_back(line);
     }
-  // Nearest edge pixel of every pixel by vector propagation (Danielsson 1980):
-  // a forward and a backward raster sweep, each pixel taking the nearest of
-  // its already-visited 8-neighbours' edges. Exact except in rare
-  // configurations, where it picks an edge within a pixel of the nearest.
-  std::vector<float> lx(lines_.size()), ly(lines_.size());
-  for (std::size_t i = 0; i < lines_.size(); ++i) {
-    lx[i] = lines_[i][0];
-    ly[i] = lines_[i][1];
   }
-  for (int pass = 0; pass < 2; ++pass) {
-    const int step = pass == 0 ? 1 : -1;
-    for (int v = pass == 0 ? 0 : H - 1; v >= 0 && v < H; v += step) {
-      int* row = nearest_.ptr<int>(v);
-      const int* prev = (v - step >= 0 && v - step < H) ? nearest_.ptr<int>(v - step) : nullptr;
-      const auto fv = static_cast<float>(v);
-      for (int u = pass == 0 ? 0 : W - 1; u >= 0 && u < W; u += step) {
-        const auto fu = static_cast<float>(u);
-        int best = row[u];
-        float best_d = 0.0f;
-        if (best >= 0) {
-          const float dx = lx[static_cast<std::size_t>(best)] - fu, dy = ly[static_cast<std::size_t>(best)] - fv;
-          best_d = dx * dx + dy * dy;
-        }
-        int candidates[4] = {-1, -1, -1, -1};
-        const int ub = u - step;
-        if (ub >= 0 && ub < W) candidates[0] = row[ub];
-        if (prev) {
-          candidates[1] = prev[u];
-          if (ub >= 0 && ub < W) candidates[2] = prev[ub];
-          const int uf = u + step;
-          if (uf >= 0 && uf < W) candidates[3] = prev[uf];
-        }
-        for (int c : candidates) {
-          if (c < 0 || c == best) continue;
-          const float dx = lx[static_cast<std::size_t>(c)] - fu, dy = ly[static_cast<std::size_t>(c)] - fv;
-          const float d = dx * dx + dy * dy;
-          if (best < 0 || d < best_d) {
-            best = c;
-            best_d = d;
-          }
-        }
-        row[u] = best;
-      }
-    }
-  }
+  line_of_pixel_ = std::move(line_of_pixel);
+  nearest_pixel_ = std::move(nearest_pixel);
 }
 
 void DistanceTransform::nearestLine(double u, double v, Vec2* point, Vec2* normal) const {
-  const int x = std::clamp(static_cast<int>(u + 0.5), 0, nearest_.cols - 1);
-  const int y = std::clamp(static_cast<int>(v + 0.5), 0, nearest_.rows - 1);
-  const int i = nearest_.at<int>(y, x);
+  const int x = std::clamp(static_cast<int>(u + 0.5), 0, nearest_pixel_.cols - 1);
+  const int y = std::clamp(static_cast<int>(v + 0.5), 0, nearest_pixel_.rows - 1);
+  const int pixel = nearest_pixel_.at<int>(y, x);
+  const int i = pixel < 0 ? -1 : line_of_pixel_[static_cast<std::size_t>(pixel)];
   if (i < 0) {  // no edge at all in the image
     *point = Vec2(u, v);
     *normal = Vec2(1.0, 0.0);

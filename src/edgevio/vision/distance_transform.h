@@ -1,7 +1,7 @@
 #pragma once
 // The distance transform of an edge map (METHOD.md §3): V(u) is the Euclidean
 // distance in pixels from u to the nearest edge pixel (exact: Felzenszwalb &
-// Huttenlocher 2012, via OpenCV's DIST_MASK_PRECISE), its gradient ∇V by
+// Huttenlocher 2012, which also yields that pixel), its gradient ∇V by
 // central differences (evaluated at the sampled pixels only), both sampled
 // bilinearly. V is the paper's residual.
 //
@@ -32,16 +32,17 @@ class DistanceTransform {
   float value(double u, double v) const;
   void valueAndGradient(double u, double v, float* value, float* du, float* dv) const;
   const cv::Mat& distance() const { return dist_; }
-  bool hasLines() const { return !nearest_.empty(); }
+  bool hasLines() const { return !nearest_pixel_.empty(); }
   /// Time spent building the lines [ms].
   double linesMs() const { return lines_ms_; }
   /// Nearest edge of pixel (round(u), round(v)) as a sub-pixel point and unit normal.
   void nearestLine(double u, double v, Vec2* point, Vec2* normal) const;
 
  private:
-  void buildLines(const cv::Mat& edges, const cv::Mat& image);
+  void buildLines(const cv::Mat& edges, const cv::Mat& image, cv::Mat&& nearest_pixel);
   cv::Mat dist_;               // CV_32FC1
-  cv::Mat nearest_;            // CV_32SC1: index into lines_ of the nearest edge pixel
+  cv::Mat nearest_pixel_;              // CV_32SC1: v·W + u of the nearest edge pixel, −1 without edges
+  std::vector<int> line_of_pixel_;     // v·W + u → index into lines_ (edge pixels only)
   std::vector<Eigen::Vector4f> lines_;  // (x, y, nx, ny) per edge pixel
   double lines_ms_ = 0.0;
 };
