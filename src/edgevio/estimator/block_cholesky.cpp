@@ -92,17 +92,22 @@ bool solveEnvelopeCholesky(const Eigen::MatrixXd& H, double lambda, const Eigen:
   const auto Hb = [&](long k, long l) {
     return H.block<B, B>(B * order[static_cast<std::size_t>(k)], B * order[static_cast<std::size_t>(l)]);
   };
-  // L row by row (positions k in `order`); row k stores blocks first[k] .. k.
-  std::vector<std::vector<Block>> L(static_cast<std::size_t>(nb));
-  const auto Lb = [&](long i, long j) -> Block& {
-    return L[static_cast<std::size_t>(i)][static_cast<std::size_t>(j - first[static_cast<std::size_t>(i)])];
+  // L row by row (positions k in `order`): row i is one 15 x 15·(i − first[i] + 1)
+  // matrix holding blocks first[i] .. i side by side, so that Σ_k L_ik L_jkᵀ
+  // is a single product with a long inner dimension (small 15x15 products
+  // spend their time packing).
+  std::vector<Eigen::Matrix<double, B, Eigen::Dynamic>> L(static_cast<std::size_t>(nb));
+  const auto row = [&](long i, long from, long count) {
+    return L[static_cast<std::size_t>(i)].middleCols(B * (from - first[static_cast<std::size_t>(i)]), B * count);
   };
+  const auto Lb = [&](long i, long j) { return L[static_cast<std::size_t>(i)].middleCols<B>(B * (j - first[static_cast<std::size_t>(i)])); };
   for (long i = 0; i < nb; ++i) {
     const long fi = first[static_cast<std::size_t>(i)];
-    L[static_cast<std::size_t>(i)].resize(static_cast<std::size_t>(i - fi + 1));
+    L[static_cast<std::size_t>(i)].resize(B, B * (i - fi + 1));
     for (long j = fi; j <= i; ++j) {
       Block S = Hb(i, j);
-      for (long k = std::max(fi, first[static_cast<std::size_t>(j)]); k < j; ++k) S.noalias() -= Lb(i, k) * Lb(j, k).transpose();
+      const long k0 = std::max(fi, first[static_cast<std::size_t>(j)]);
+      if (k0 < j) S.noalias() -= row(i, k0, j - k0) * row(j, k0, j - k0).transpose();
       if (j < i) {
         // L_ij L_jjᵀ = S
         Lb(i, j) = Lb(j, j).triangularView<Eigen::Lower>().solve(S.transpose()).transpose();
@@ -118,14 +123,16 @@ bool solveEnvelopeCholesky(const Eigen::MatrixXd& H, double lambda, const Eigen:
   Eigen::VectorXd y(rhs.size());
   for (long k = 0; k < nb; ++k) y.segment<B>(B * k) = rhs.segment<B>(B * order[static_cast<std::size_t>(k)]);
   for (long i = 0; i < nb; ++i) {
+    const long fi = first[static_cast<std::size_t>(i)];
     BlockVec yi = y.segment<B>(B * i);
-    for (long j = first[static_cast<std::size_t>(i)]; j < i; ++j) yi.noalias() -= Lb(i, j) * y.segment<B>(B * j);
+    if (fi < i) yi.noalias() -= row(i, fi, i - fi) * y.segment(B * fi, B * (i - fi));
     y.segment<B>(B * i) = Lb(i, i).triangularView<Eigen::Lower>().solve(yi);
   }
   for (long i = nb - 1; i >= 0; --i) {
     const BlockVec xi = Lb(i, i).transpose().triangularView<Eigen::Upper>().solve(BlockVec(y.segment<B>(B * i)));
     y.segment<B>(B * i) = xi;
-    for (long j = first[static_cast<std::size_t>(i)]; j < i; ++j) y.segment<B>(B * j).noalias() -= Lb(i, j).transpose() * xi;
+    const long fi = first[static_cast<std::size_t>(i)];
+    if (fi < i) y.segment(B * fi, B * (i - fi)).noalias() -= row(i, fi, i - fi).transpose() * xi;
   }
   x->resize(rhs.size());
   for (long k = 0; k < nb; ++k) x->segment<B>(B * order[static_cast<std::size_t>(k)]) = y.segment<B>(B * k);

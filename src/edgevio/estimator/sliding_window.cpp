@@ -37,6 +37,25 @@ Vec15 boxminus(const NavState& x, const NavState& x0) {
 
 namespace {
 
+imu::Mat15 inertialInformation(const imu::Preintegration& p) {
+  // The covariance is positive definite after one step; a tiny diagonal keeps
+  // the inverse finite for degenerate (zero-length) links.
+  const imu::Mat15 P = p.covariance() + imu::Mat15::Identity() * 1e-12;
+  return P.ldlt().solve(imu::Mat15::Identity());
+}
+
+}  // namespace
+
+InertialLink::InertialLink(std::size_t from, std::size_t to, imu::Preintegration preintegration)
+    : i(from), j(to), pre(std::move(preintegration)), information(inertialInformation(pre)) {}
+
+void InertialLink::repropagate(const Vec3& b_a, const Vec3& b_g) {
+  pre.repropagate(b_a, b_g);
+  information = inertialInformation(pre);
+}
+
+namespace {
+
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 /// Normal equations H δ = −g over a set of states (local indices via `slot`).
@@ -50,6 +69,13 @@ struct Normal {
         g(only_cost ? VectorXd() : VectorXd::Zero(15 * static_cast<long>(n))),
         cost_only(only_cost) {}
 
+  /// Back to zero, keeping the memory (a window's H is 1.6 MB).
+  void reset() {
+    H.setZero();
+    g.setZero();
+    cost = 0.0;
+  }
+
   template <int R>
   void add(const Eigen::Matrix<double, R, 1>& r, const Eigen::Matrix<double, R, R>& W,
            const std::vector<std::pair<long, Eigen::Matrix<double, R, 15>>>& blocks) {
@@ -57,11 +83,12 @@ struct Normal {
     if (cost_only) return;
     for (std::size_t u = 0; u < blocks.size(); ++u) {
       const auto& [a, Ja] = blocks[u];
-      const Eigen::Matrix<double, 15, R> JaT_W = Ja.transpose() * W;
+      // lazyProduct: small fixed sizes, where Eigen's general product mostly packs.
+      const Eigen::Matrix<double, 15, R> JaT_W = Ja.transpose().lazyProduct(W);
       g.segment<15>(15 * a) += JaT_W * r;
       for (std::size_t v = u; v < blocks.size(); ++v) {
         const auto& [b, Jb] = blocks[v];
-        const imu::Mat15 Hab = JaT_W * Jb;
+        const imu::Mat15 Hab = JaT_W.lazyProduct(Jb);
         H.block<15, 15>(15 * a, 15 * b) += Hab;
         if (v != u) H.block<15, 15>(15 * b, 15 * a) += Hab.transpose();
       }
@@ -69,12 +96,6 @@ struct Normal {
   }
 };
 
-imu::Mat15 inertialInformation(const imu::Preintegration& p) {
-  // The covariance is positive definite after one step; a tiny diagonal keeps
-  // the inverse finite for degenerate (zero-length) links.
-  const imu::Mat15 P = p.covariance() + imu::Mat15::Identity() * 1e-12;
-  return P.ldlt().solve(imu::Mat15::Identity());
-}
 
 /// Adds the factors selected by the predicates, with local indices from `slot`.
 template <class UseInertial, class UseVisual>
@@ -84,7 +105,7 @@ void linearize(const Window& w, const SolverOptions& o, const std::map<std::size
     if (!use_inertial(l)) continue;
     imu::Mat15 Ji, Jj;
     const Vec15 r = l.pre.residual(w.states[l.i].x, w.states[l.j].x, n->cost_only ? nullptr : &Ji, n->cost_only ? nullptr : &Jj);
-    n->add<15>(r, inertialInformation(l.pre), {{slot.at(l.i), Ji}, {slot.at(l.j), Jj}});
+    n->add<15>(r, l.information, {{slot.at(l.i), Ji}, {slot.at(l.j), Jj}});
   }
   for (const VisualLink& l : w.visual) {
     if (!use_visual(l)) continue;
@@ -161,8 +182,9 @@ SolveSummary solve(Window* w, const SolverOptions& o) {
   const std::size_t N = w->states.size();
   if (N == 0) return s;
   const auto slots = identitySlots(N);
+  Normal n(N);
   for (int it = 0; it < o.max_iterations; ++it) {
-    Normal n(N);
+    n.reset();
     linearize(*w, o, slots, true, [](const InertialLink&) { return true; }, [](const VisualLink&) { return true; }, &n);
     if (it == 0) s.initial_cost = n.cost;
     const VectorXd step = perturbedCholeskySolve(n.H, -n.g, o.damping);
@@ -225,7 +247,12 @@ void marginalize(Window* w, std::size_t k, const SolverOptions& o) {
   const auto renumber = [k](std::size_t i) { return i > k ? i - 1 : i; };
   std::vector<InertialLink> inertial;
   for (auto& l : w->inertial)
-    if (l.i != k && l.j != k) inertial.push_back({renumber(l.i), renumber(l.j), l.pre});
+    if (l.i != k && l.j != k) {
+      const std::size_t i = renumber(l.i), j = renumber(l.j);
+      inertial.push_back(std::move(l));
+      inertial.back().i = i;
+      inertial.back().j = j;
+    }
   std::vector<VisualLink> visual;
   for (auto& l : w->visual)
     if (l.r != k && l.n != k) visual.push_back({renumber(l.r), renumber(l.n), l.link});

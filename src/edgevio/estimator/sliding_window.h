@@ -23,8 +23,14 @@ struct WindowState {
 
 /// Preintegration between states i and j (indices into Window::states).
 struct InertialLink {
+  InertialLink(std::size_t from, std::size_t to, imu::Preintegration preintegration);
+  /// Re-integrates with new linearisation biases (and updates the information).
+  void repropagate(const Vec3& b_a, const Vec3& b_g);
+
   std::size_t i, j;
   imu::Preintegration pre;
+  /// P⁻¹ of `pre`, kept with it: every linearisation needs it, it changes only with `pre`.
+  imu::Mat15 information;
 };
 
 /// A tracking or loop-closure link from state r (its camera is the reference) to state n.

@@ -164,7 +164,7 @@ EstimatorUpdate VioEstimator::optimize(bool alignment_good, std::optional<std::i
     const imu::NavState& xi = window_.states[l.i].x;
     if ((xi.b_a - l.pre.linearizationBa()).norm() > options_.repropagate_accel_bias ||
         (xi.b_g - l.pre.linearizationBg()).norm() > options_.repropagate_gyro_bias)
-      l.pre.repropagate(xi.b_a, xi.b_g);
+      l.repropagate(xi.b_a, xi.b_g);
   }
   const SolveSummary s = solve(&window_, solverOptions());
   u.iterations = s.iterations;
