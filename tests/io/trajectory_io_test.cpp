@@ -59,6 +59,31 @@ TEST(TrajectoryIo, EurocRoundTripWithVelocityAndBias) {
   EXPECT_LT((r[3].b_g - t[3].b_g).norm(), 1e-12);
 }
 
+TEST(TrajectoryIo, StreamedEurocMarksUnknownVelocityAndBias) {
+  // A run writes sample by sample; a frame without an estimator state (before
+  // the IMU starts, say) gets "nan" there, read back as unknown.
+  TempDir dir;
+  const Trajectory t = sampleTrajectory();
+  {
+    TrajectoryWriter w(dir.file("t.csv"), TrajectoryFormat::kEuroc, true);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      TrajectorySample s = t[i];
+      if (i >= 2) {
+        s.v_w = Vec3(1, 2, 3);
+        s.b_g = Vec3(1e-3, -2e-3, 3e-4);
+        s.b_a = Vec3(0.1, 0.2, -0.3);
+      }
+      w.write(s);
+    }
+    EXPECT_EQ(w.count(), t.size());
+  }
+  const Trajectory r = readTrajectory(dir.file("t.csv"));
+  expectSameTrajectory(t, r, 1e-8);
+  EXPECT_FALSE(r[1].hasVelocityAndBias());
+  ASSERT_TRUE(r[2].hasVelocityAndBias());
+  EXPECT_LT((r[2].b_a - Vec3(0.1, 0.2, -0.3)).norm(), 1e-12);
+}
+
 TEST(TrajectoryIo, ColumnOrdersOfBothFormats) {
   TempDir dir;
   // Same pose: 90° about z (q = [w=cos45, z=sin45]) at (1, 2, 3).

@@ -1,5 +1,7 @@
 #include "edgevio/common/table_reader.h"
 
+#include <limits>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -83,6 +85,11 @@ double TableReader::number(std::size_t i) const {
   if (!parseFiniteDouble(fields_[i], &v))
     fail("column " + std::to_string(i + 1) + ": expected a finite number, found " + quoted(fields_[i]));
   return v;
+}
+
+double TableReader::numberOrNan(std::size_t i) const {
+  if (i < fields_.size() && (fields_[i] == "nan" || fields_[i] == "NaN")) return std::numeric_limits<double>::quiet_NaN();
+  return number(i);
 }
 
 std::int64_t TableReader::integer(std::size_t i) const {

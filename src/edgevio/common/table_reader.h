@@ -29,6 +29,8 @@ class TableReader {
   void requireFields(std::size_t n, const std::string& what) const;
   /// Finite double in column i (NaN and inf are errors).
   double number(std::size_t i) const;
+  /// A finite number, or "nan" (a value the writer did not know).
+  double numberOrNan(std::size_t i) const;
   /// Non-negative integer in column i (nanosecond timestamps).
   std::int64_t integer(std::size_t i) const;
   /// A time in seconds with a fraction, converted exactly enough to nanoseconds

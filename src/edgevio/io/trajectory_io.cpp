@@ -33,17 +33,6 @@ Quat readUnitQuaternion(const TableReader& r, double w, double x, double y, doub
   return q.normalized();
 }
 
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using File = std::unique_ptr<std::FILE, FileCloser>;
-
-File openForWriting(const std::string& path) {
-  File f(std::fopen(path.c_str(), "w"));
-  if (!f) throw InputError(path, 0, "cannot open file for writing (does the folder exist?)");
-  return f;
-}
-
 }  // namespace
 
 Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected) {
@@ -60,9 +49,9 @@ Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected) {
       s.T_w_b = geometry::SE3(readUnitQuaternion(r, r.number(4), r.number(5), r.number(6), r.number(7)),
                               Vec3(r.number(1), r.number(2), r.number(3)));
       if (r.size() >= 17) {
-        s.v_w = Vec3(r.number(8), r.number(9), r.number(10));
-        s.b_g = Vec3(r.number(11), r.number(12), r.number(13));
-        s.b_a = Vec3(r.number(14), r.number(15), r.number(16));
+        s.v_w = Vec3(r.numberOrNan(8), r.numberOrNan(9), r.numberOrNan(10));
+        s.b_g = Vec3(r.numberOrNan(11), r.numberOrNan(12), r.numberOrNan(13));
+        s.b_a = Vec3(r.numberOrNan(14), r.numberOrNan(15), r.numberOrNan(16));
       }
     } else {
       r.requireFields(8, "t x y z qx qy qz qw");
@@ -80,37 +69,52 @@ Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected) {
   return traj;
 }
 
-void writeTrajectoryTum(const std::string& path, const Trajectory& trajectory) {
-  File f = openForWriting(path);
-  std::fprintf(f.get(), "# timestamp[s] tx ty tz qx qy qz qw\n");
-  for (const auto& s : trajectory) {
-    const Vec3& p = s.T_w_b.translation();
-    const Quat& q = s.T_w_b.quaternion();
-    std::fprintf(f.get(), "%lld.%09lld %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n",
-                 static_cast<long long>(s.t_ns / 1000000000), static_cast<long long>(s.t_ns % 1000000000), p.x(),
-                 p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
+TrajectoryWriter::TrajectoryWriter(const std::string& path, TrajectoryFormat format, bool velocity_and_bias)
+    : file_(std::fopen(path.c_str(), "w")), format_(format), velocity_and_bias_(velocity_and_bias) {
+  if (!file_) throw InputError(path, 0, "cannot open file for writing (does the folder exist?)");
+  if (format_ == TrajectoryFormat::kTum)
+    std::fprintf(file_, "# timestamp[s] tx ty tz qx qy qz qw\n");
+  else
+    std::fprintf(file_, "#timestamp [ns],p_RS_R_x [m],p_RS_R_y [m],p_RS_R_z [m],q_RS_w [],q_RS_x [],q_RS_y [],q_RS_z []%s\n",
+                 velocity_and_bias_ ? ",v_RS_R_x [m s^-1],v_RS_R_y [m s^-1],v_RS_R_z [m s^-1],b_w_RS_S_x [rad s^-1],"
+                                      "b_w_RS_S_y [rad s^-1],b_w_RS_S_z [rad s^-1],b_a_RS_S_x [m s^-2],b_a_RS_S_y [m s^-2],"
+                                      "b_a_RS_S_z [m s^-2]"
+                                    : "");
+}
+
+TrajectoryWriter::~TrajectoryWriter() { std::fclose(file_); }
+
+void TrajectoryWriter::write(const TrajectorySample& s) {
+  const Vec3& p = s.T_w_b.translation();
+  const Quat& q = s.T_w_b.quaternion();
+  ++count_;
+  if (format_ == TrajectoryFormat::kTum) {
+    std::fprintf(file_, "%lld.%09lld %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", static_cast<long long>(s.t_ns / 1000000000),
+                 static_cast<long long>(s.t_ns % 1000000000), p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
+    return;
   }
+  std::fprintf(file_, "%lld,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f", static_cast<long long>(s.t_ns), p.x(), p.y(), p.z(),
+               q.w(), q.x(), q.y(), q.z());
+  if (velocity_and_bias_) {
+    if (s.hasVelocityAndBias())
+      std::fprintf(file_, ",%.9f,%.9f,%.9f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.v_w.x(), s.v_w.y(), s.v_w.z(), s.b_g.x(),
+                   s.b_g.y(), s.b_g.z(), s.b_a.x(), s.b_a.y(), s.b_a.z());
+    else
+      std::fprintf(file_, ",nan,nan,nan,nan,nan,nan,nan,nan,nan");
+  }
+  std::fprintf(file_, "\n");
+}
+
+void writeTrajectoryTum(const std::string& path, const Trajectory& trajectory) {
+  TrajectoryWriter w(path, TrajectoryFormat::kTum);
+  for (const auto& s : trajectory) w.write(s);
 }
 
 void writeTrajectoryEuroc(const std::string& path, const Trajectory& trajectory) {
-  File f = openForWriting(path);
   bool full = !trajectory.empty();
   for (const auto& s : trajectory) full = full && s.hasVelocityAndBias();
-  std::fprintf(f.get(), "#timestamp [ns],p_RS_R_x [m],p_RS_R_y [m],p_RS_R_z [m],q_RS_w [],q_RS_x [],q_RS_y [],q_RS_z []%s\n",
-               full ? ",v_RS_R_x [m s^-1],v_RS_R_y [m s^-1],v_RS_R_z [m s^-1],b_w_RS_S_x [rad s^-1],"
-                      "b_w_RS_S_y [rad s^-1],b_w_RS_S_z [rad s^-1],b_a_RS_S_x [m s^-2],b_a_RS_S_y [m s^-2],"
-                      "b_a_RS_S_z [m s^-2]"
-                    : "");
-  for (const auto& s : trajectory) {
-    const Vec3& p = s.T_w_b.translation();
-    const Quat& q = s.T_w_b.quaternion();
-    std::fprintf(f.get(), "%lld,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f", static_cast<long long>(s.t_ns), p.x(), p.y(),
-                 p.z(), q.w(), q.x(), q.y(), q.z());
-    if (full)
-      std::fprintf(f.get(), ",%.9f,%.9f,%.9f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", s.v_w.x(), s.v_w.y(), s.v_w.z(),
-                   s.b_g.x(), s.b_g.y(), s.b_g.z(), s.b_a.x(), s.b_a.y(), s.b_a.z());
-    std::fprintf(f.get(), "\n");
-  }
+  TrajectoryWriter w(path, TrajectoryFormat::kEuroc, full);
+  for (const auto& s : trajectory) w.write(s);
 }
 
 }  // namespace edgevio::io

@@ -4,6 +4,7 @@
 //  EuRoC: `t[ns],px,py,pz,qw,qx,qy,qz[,vx,vy,vz,bwx,bwy,bwz,bax,bay,baz]`
 // The format is detected from the first data row: commas mean EuRoC.
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -30,7 +31,27 @@ enum class TrajectoryFormat { kTum, kEuroc };
 /// InputError naming file and line.
 Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected = nullptr);
 
-/// Writes TUM with nanosecond-exact timestamps (9 decimals).
+/// Writes a trajectory sample by sample, so that a run of any length keeps
+/// none of it in memory: TUM with nanosecond-exact timestamps (9 decimals), or
+/// EuRoC CSV, with velocity and bias columns if asked for ("nan" in them for
+/// a sample that has none; readTrajectory reads that back as unknown).
+class TrajectoryWriter {
+ public:
+  TrajectoryWriter(const std::string& path, TrajectoryFormat format, bool velocity_and_bias = false);
+  ~TrajectoryWriter();
+  TrajectoryWriter(const TrajectoryWriter&) = delete;
+  TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
+  void write(const TrajectorySample& sample);
+  std::size_t count() const { return count_; }
+
+ private:
+  std::FILE* file_ = nullptr;
+  TrajectoryFormat format_;
+  bool velocity_and_bias_;
+  std::size_t count_ = 0;
+};
+
+/// Writes TUM (see TrajectoryWriter).
 void writeTrajectoryTum(const std::string& path, const Trajectory& trajectory);
 /// Writes EuRoC CSV; velocity and bias columns when every sample has them.
 void writeTrajectoryEuroc(const std::string& path, const Trajectory& trajectory);

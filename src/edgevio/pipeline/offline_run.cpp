@@ -57,7 +57,10 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
 
   Odometry odometry(req.mode, config, dataset.calibration(), rect, dataset.imu(), init, req.realtime);
   RunSummary s;
-  io::Trajectory trajectory;
+  // Written as the run goes: memory does not grow with the sequence's length.
+  io::TrajectoryWriter tum((fs::path(req.out_dir) / "trajectory_tum.txt").string(), io::TrajectoryFormat::kTum);
+  io::TrajectoryWriter euroc((fs::path(req.out_dir) / "trajectory.csv").string(), io::TrajectoryFormat::kEuroc,
+                             isImuMode(req.mode));
   const std::size_t step = static_cast<std::size_t>(req.skip) + 1;
   const std::size_t total = (pairs.size() + step - 1) / step;
 
@@ -167,7 +170,8 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
       sample.b_g = fr.state->b_g;
       sample.b_a = fr.state->b_a;
     }
-    trajectory.push_back(sample);
+    tum.write(sample);
+    euroc.write(sample);
     ++s.frames;
     s.keyframes += t.keyframe + t.promoted_previous + fr.forced_keyframe;
     s.self_check_failures += t.aligned && !t.self_check_passed;
@@ -211,9 +215,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   if (prepare_error) std::rethrow_exception(prepare_error);
   s.dropped_frames = dropped;
   s.skipped_unreadable += dataset.unreadableImages(0) + dataset.unreadableImages(1) - s.skipped_unreadable;
-  if (trajectory.empty()) throw InputError(req.dataset, 0, "no stereo pair could be read");
-  io::writeTrajectoryTum((fs::path(req.out_dir) / "trajectory_tum.txt").string(), trajectory);
-  io::writeTrajectoryEuroc((fs::path(req.out_dir) / "trajectory.csv").string(), trajectory);
+  if (tum.count() == 0) throw InputError(req.dataset, 0, "no stereo pair could be read");
 
   s.estimator_resets = odometry.resets();
   s.loop_closures = odometry.loopClosures();
