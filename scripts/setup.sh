@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   cmake g++ make
-  libeigen3-dev libyaml-cpp-dev libcli11-dev zlib1g-dev
+  libeigen3-dev libyaml-cpp-dev libcli11-dev zlib1g-dev libdeflate-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-calib3d-dev
   libgtest-dev libbenchmark-dev
 )

@@ -10,6 +10,7 @@
 #include "edgevio/common/table_reader.h"
 #include "edgevio/io/calibration_io.h"
 #include "edgevio/io/imu_io.h"
+#include "edgevio/io/png_reader.h"
 
 namespace edgevio::io {
 
@@ -102,6 +103,8 @@ double EurocDataset::durationSeconds() const {
 }
 
 cv::Mat decodeGrayImage(const std::string& path) {
+  cv::Mat fast = readPngGray8(path);
+  if (!fast.empty()) return fast;
   try {
     return cv::imread(path, cv::IMREAD_GRAYSCALE);
   } catch (const cv::Exception&) {
