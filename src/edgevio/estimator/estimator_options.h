@@ -8,8 +8,7 @@ namespace edgevio::estimator {
 /// Options of the sliding-window estimator (config section `estimator`; METHOD.md §4, §5).
 struct EstimatorOptions {
   int window_size = 30;                       ///< N: states kept in the window [-]
-  int max_iterations = 3;                     ///< Gauss-Newton iterations per frame, at most [-]
-  double min_step = 1e-4;                     ///< stop iterating once the whole step's norm is below this [m, rad, m/s]
+  int max_iterations = 3;                     ///< Gauss-Newton iterations per frame [-]
   double huber_translation_m = 0.1;           ///< c_t of eq 24 [m]
   double huber_rotation_deg = 2.0;            ///< c_a of eq 25 [deg]
   double damping = 1e-9;                      ///< first λ of the perturbed Cholesky, relative to the largest diagonal entry [-]
@@ -33,8 +32,7 @@ struct EstimatorOptions {
   template <class Visitor>
   void visit(Visitor& v) {
     v("window_size", window_size, "-", "N: states kept in the sliding window");
-    v("max_iterations", max_iterations, "-", "Gauss-Newton iterations per frame, at most");
-    v("min_step", min_step, "-", "stop iterating once the norm of the whole error-state step (m, rad, m/s, biases) is below this");
+    v("max_iterations", max_iterations, "-", "Gauss-Newton iterations per frame");
     v("huber_translation_m", huber_translation_m, "m", "c_t of eq 24: Huber threshold of a visual link's translation error");
     v("huber_rotation_deg", huber_rotation_deg, "deg", "c_a of eq 25: Huber threshold of a visual link's rotation error");
     v("damping", damping, "-", "first lambda of the perturbed Cholesky, relative to the largest diagonal entry");
@@ -59,7 +57,6 @@ struct EstimatorOptions {
   SolverOptions solver() const {
     SolverOptions s;
     s.max_iterations = max_iterations;
-    s.min_step = min_step;
     s.huber_translation_m = huber_translation_m;
     s.huber_rotation_deg = huber_rotation_deg;
     s.damping = damping;

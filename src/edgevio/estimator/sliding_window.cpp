@@ -170,28 +170,6 @@ double heading(const SO3& R, const Vec3& body_axis) {
 
 }  // namespace
 
-void moveWorldFrame(Window* w, const SO3& R, const Vec3& p_from, const Vec3& p_to) {
-  const auto move = [&](NavState* x) {
-    x->R_w_b = R * x->R_w_b;
-    x->p_w = R * (x->p_w - p_from) + p_to;
-    x->v_w = R * x->v_w;
-  };
-  for (WindowState& st : w->states) move(&st.x);
-  // The prior's H and b are in world-frame p and v coordinates: δ' = T δ with
-  // T = diag(R, I, R, I, I) per state (body-frame δθ is unchanged).
-  MarginalPrior& prior = w->prior;
-  const Mat3 Rm = R.matrix();
-  for (std::size_t k = 0; k < prior.states.size(); ++k) {
-    move(&prior.x0[k]);
-    for (const long off : {imu::kP, imu::kV}) {
-      const long r = 15 * static_cast<long>(k) + off;
-      prior.H.middleRows<3>(r) = Rm * prior.H.middleRows<3>(r);
-      prior.H.middleCols<3>(r) = prior.H.middleCols<3>(r) * Rm.transpose();
-      prior.b.segment<3>(r) = Rm * prior.b.segment<3>(r);
-    }
-  }
-}
-
 double windowCost(const Window& w, const SolverOptions& o) {
   Normal n(w.states.size(), true);
   linearize(w, o, identitySlots(w.states.size()), true, [](const InertialLink&) { return true; },
@@ -220,7 +198,12 @@ SolveSummary solve(Window* w, const SolverOptions& o) {
       const SO3 Rz = o.gauge_full_rotation
                          ? oldest.R_w_b * w->states.front().x.R_w_b.inverse()
                          : SO3::exp(Vec3(0, 0, heading(oldest.R_w_b, axis) - heading(w->states.front().x.R_w_b, axis)));
-      moveWorldFrame(w, Rz, w->states.front().x.p_w, oldest.p_w);
+      const Vec3 p_new = w->states.front().x.p_w;
+      for (WindowState& st : w->states) {
+        st.x.R_w_b = Rz * st.x.R_w_b;
+        st.x.p_w = Rz * (st.x.p_w - p_new) + oldest.p_w;
+        st.x.v_w = Rz * st.x.v_w;
+      }
     }
     ++s.iterations;
     if (step.norm() < o.min_step) break;

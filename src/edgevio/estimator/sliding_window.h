@@ -75,15 +75,6 @@ struct SolveSummary {
 imu::NavState boxplus(const imu::NavState& x, const Eigen::Ref<const imu::Vec15>& d);
 imu::Vec15 boxminus(const imu::NavState& x, const imu::NavState& x0);
 
-/// Changes the world frame: every state and the prior's linearisation points
-/// become (R·(p − p_from) + p_to, R·R_w_b, R·v), and the prior's H and b
-/// follow. For R about gravity this is a symmetry of every factor (the cost
-/// does not change); the gauge re-anchoring after each step is such a change.
-/// Moving the states without the prior would make x ⊟ x0 contain the
-/// re-anchoring: the prior would pull the window back by it at every
-/// iteration, and the next re-anchoring undo that.
-void moveWorldFrame(Window* w, const geometry::SO3& R, const Vec3& p_from, const Vec3& p_to);
-
 /// Total cost of the window at its current estimate (Huber-weighted).
 double windowCost(const Window& w, const SolverOptions& o);
 

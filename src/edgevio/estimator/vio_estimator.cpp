@@ -20,7 +20,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 std::string EstimatorOptions::validate() const {
   if (window_size < 3) return "window_size: at least 3";
   if (max_iterations < 1) return "max_iterations: at least 1";
-  if (!(min_step >= 0)) return "min_step: must be >= 0";
   if (!(huber_translation_m > 0 && huber_rotation_deg > 0)) return "huber_*: must be > 0";
   if (!(damping > 0)) return "damping: must be > 0";
   if (!(external_check_rotation_deg > 0 && external_check_translation_m > 0)) return "external_check_*: must be > 0";
