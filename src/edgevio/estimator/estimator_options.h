@@ -8,7 +8,7 @@ namespace edgevio::estimator {
 /// Options of the sliding-window estimator (config section `estimator`; METHOD.md §4, §5).
 struct EstimatorOptions {
   int window_size = 30;                       ///< N: states kept in the window [-]
-  int max_iterations = 3;                     ///< Gauss-Newton iterations per frame [-]
+  int max_iterations = 2;                     ///< Gauss-Newton iterations per frame [-]
   double huber_translation_m = 0.1;           ///< c_t of eq 24 [m]
   double huber_rotation_deg = 2.0;            ///< c_a of eq 25 [deg]
   double damping = 1e-9;                      ///< first λ of the perturbed Cholesky, relative to the largest diagonal entry [-]
