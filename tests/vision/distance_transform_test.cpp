@@ -22,18 +22,21 @@ cv::Mat randomEdges(int w, int h, double density, std::uint64_t seed) {
   return e;
 }
 
+/// Distance from (u, v) to the nearest non-zero pixel of `edges`, by trying them all.
+double bruteForceDistance(const cv::Mat& edges, int u, int v) {
+  std::vector<cv::Point> pts;
+  cv::findNonZero(edges, pts);
+  double best = 1e9;
+  for (const auto& p : pts) best = std::min(best, std::hypot(p.x - u, p.y - v));
+  return best;
+}
+
 TEST(DistanceTransform, ExactAgainstBruteForce) {
   for (double density : {0.001, 0.02, 0.2}) {
     const cv::Mat e = randomEdges(97, 61, density, static_cast<std::uint64_t>(density * 1e4));
     const cv::Mat d = DistanceTransform(e).distance();
-    std::vector<cv::Point> pts;
-    cv::findNonZero(e, pts);
     for (int v = 0; v < e.rows; v += 13)
-      for (int u = 0; u < e.cols; u += 11) {
-        double best = 1e9;
-        for (const auto& p : pts) best = std::min(best, std::hypot(p.x - u, p.y - v));
-        EXPECT_NEAR(d.at<float>(v, u), best, 1e-4);
-      }
+      for (int u = 0; u < e.cols; u += 11) EXPECT_NEAR(d.at<float>(v, u), bruteForceDistance(e, u, v), 1e-4);
   }
 }
 
@@ -43,12 +46,9 @@ TEST(DistanceTransform, NearestEdgePixelIsExact) {
   for (double density : {0.002, 0.05}) {
     const cv::Mat e = randomEdges(83, 57, density, 7 + static_cast<std::uint64_t>(density * 1e3));
     const DistanceTransform dt(e, cv::Mat(e.size(), CV_8UC1, cv::Scalar(128)));
-    std::vector<cv::Point> pts;
-    cv::findNonZero(e, pts);
     for (int v = 0; v < e.rows; v += 3)
       for (int u = 0; u < e.cols; u += 5) {
-        double best = 1e9;
-        for (const auto& p : pts) best = std::min(best, std::hypot(p.x - u, p.y - v));
+        const double best = bruteForceDistance(e, u, v);
         Vec2 p, n;
         dt.nearestLine(u, v, &p, &n);
         EXPECT_NE(e.at<std::uint8_t>(static_cast<int>(p.y()), static_cast<int>(p.x())), 0);
