@@ -84,12 +84,15 @@ StaticInit staticInitialization(const std::vector<io::ImuSample>& imu, std::int6
     for (const Vec3& x : v) ss += (x - mean).squaredNorm();
     return std::sqrt(ss / static_cast<double>(v.size()));
   };
-  s.is_static = spread(chunk_a) < accel_std_max && spread(chunk_g) < gyro_std_max && s.mean_accel.norm() > 5.0;
-  if (!s.is_static) return s;
-  s.gyro_bias = mg;
+  if (s.mean_accel.norm() < 5.0) return s;  // free fall or a broken log: no usable "up"
   // R_w_b maps the measured "up" (specific force at rest) onto world z; the
-  // rotation is the smallest one (so yaw is left at its zero).
+  // rotation is the smallest one (so yaw is left at its zero). In motion the
+  // window's mean specific force is still mostly gravity (a swing of Δv over
+  // the window tilts it by about Δv / (g·window)): a far better starting point
+  // for the estimator than a level attitude, though not a measurement of tilt.
   s.R_w_b = SO3(Quat::FromTwoVectors(s.mean_accel.normalized(), Vec3::UnitZ()));
+  s.is_static = spread(chunk_a) < accel_std_max && spread(chunk_g) < gyro_std_max;
+  if (s.is_static) s.gyro_bias = mg;
   return s;
 }
 

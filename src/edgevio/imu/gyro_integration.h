@@ -28,7 +28,7 @@ bool integrateGyro(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, st
 
 struct StaticInit {
   bool is_static = false;       ///< the window looked static (low accel and gyro spread)
-  geometry::SO3 R_w_b;          ///< gravity-aligned orientation, yaw 0 (identity if not static)
+  geometry::SO3 R_w_b;          ///< gravity-aligned orientation from the mean specific force, yaw 0 (identity without one)
   Vec3 gyro_bias = Vec3::Zero();
   Vec3 mean_accel = Vec3::Zero();
   std::size_t samples = 0;
