@@ -28,6 +28,8 @@ struct EstimatorOptions {
   double reset_accel_bias = 2.0;              ///< an accelerometer bias estimate beyond this resets the estimator [m/s²]
   double reset_gyro_bias = 0.3;               ///< a gyro bias estimate beyond this resets the estimator [rad/s]
   double reset_velocity = 50.0;               ///< a speed beyond this resets the estimator [m/s]
+  bool gauge_prior = true;                    ///< gauge by a stiff prior on the oldest position and yaw instead of re-anchoring
+  bool first_estimate_jacobians = true;       ///< Jacobians of prior states at the prior's linearisation point (FEJ)
 
   template <class Visitor>
   void visit(Visitor& v) {
@@ -52,6 +54,8 @@ struct EstimatorOptions {
     v("reset_accel_bias", reset_accel_bias, "m/s^2", "an accelerometer bias estimate beyond this resets the estimator");
     v("reset_gyro_bias", reset_gyro_bias, "rad/s", "a gyro bias estimate beyond this resets the estimator");
     v("reset_velocity", reset_velocity, "m/s", "a speed estimate beyond this resets the estimator");
+    v("gauge_prior", gauge_prior, "-", "gauge by a stiff prior on the oldest state's position and yaw instead of moving the states after each step");
+    v("first_estimate_jacobians", first_estimate_jacobians, "-", "Jacobians of the states in the marginalisation prior at its linearisation point (first-estimate Jacobians)");
   }
   std::string validate() const;
   SolverOptions solver() const {
@@ -60,6 +64,8 @@ struct EstimatorOptions {
     s.huber_translation_m = huber_translation_m;
     s.huber_rotation_deg = huber_rotation_deg;
     s.damping = damping;
+    s.gauge_prior = gauge_prior;
+    s.first_estimate_jacobians = first_estimate_jacobians;
     return s;
   }
 };

@@ -97,21 +97,46 @@ struct Normal {
 };
 
 
+/// Where a state's Jacobians are evaluated: its first estimate (the prior's
+/// linearisation point) when it is in the prior and first-estimate Jacobians
+/// are on, otherwise its current estimate.
+std::vector<const NavState*> jacobianPoints(const Window& w, const SolverOptions& o) {
+  std::vector<const NavState*> at(w.states.size());
+  for (std::size_t i = 0; i < w.states.size(); ++i) at[i] = &w.states[i].x;
+  if (o.first_estimate_jacobians)
+    for (std::size_t k = 0; k < w.prior.states.size(); ++k) at[w.prior.states[k]] = &w.prior.x0[k];
+  return at;
+}
+
 /// Adds the factors selected by the predicates, with local indices from `slot`.
 template <class UseInertial, class UseVisual>
 void linearize(const Window& w, const SolverOptions& o, const std::map<std::size_t, long>& slot, bool with_prior,
                UseInertial use_inertial, UseVisual use_visual, Normal* n) {
+  const std::vector<const NavState*> jp = jacobianPoints(w, o);
+  const auto moved = [&](std::size_t i) { return jp[i] != &w.states[i].x; };
   for (const InertialLink& l : w.inertial) {
     if (!use_inertial(l)) continue;
     imu::Mat15 Ji, Jj;
-    const Vec15 r = l.pre.residual(w.states[l.i].x, w.states[l.j].x, n->cost_only ? nullptr : &Ji, n->cost_only ? nullptr : &Jj);
+    Vec15 r;
+    if (!n->cost_only && (moved(l.i) || moved(l.j))) {
+      r = l.pre.residual(w.states[l.i].x, w.states[l.j].x);
+      l.pre.residual(*jp[l.i], *jp[l.j], &Ji, &Jj);
+    } else {
+      r = l.pre.residual(w.states[l.i].x, w.states[l.j].x, n->cost_only ? nullptr : &Ji, n->cost_only ? nullptr : &Jj);
+    }
     n->add<15>(r, l.information, {{slot.at(l.i), Ji}, {slot.at(l.j), Jj}});
   }
   for (const VisualLink& l : w.visual) {
     if (!use_visual(l)) continue;
     Mat6x15 Jr, Jn;
-    const Vec6 r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c, n->cost_only ? nullptr : &Jr,
-                                        n->cost_only ? nullptr : &Jn);
+    Vec6 r;
+    if (!n->cost_only && (moved(l.r) || moved(l.n))) {
+      r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c);
+      relativePoseResidual(l.link.T_nr, *jp[l.r], *jp[l.n], w.T_b_c, &Jr, &Jn);
+    } else {
+      r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c, n->cost_only ? nullptr : &Jr,
+                               n->cost_only ? nullptr : &Jn);
+    }
     const Mat6 W = huberWeightedInformation(l.link.information, r, o.huber_translation_m, o.huber_rotation_deg * kDegToRad);
     n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}});
   }
@@ -187,11 +212,22 @@ SolveSummary solve(Window* w, const SolverOptions& o) {
     n.reset();
     linearize(*w, o, slots, true, [](const InertialLink&) { return true; }, [](const VisualLink&) { return true; }, &n);
     if (it == 0) s.initial_cost = n.cost;
-    const VectorXd step = perturbedCholeskySolve(n.H, -n.g, o.damping);
+    double damping = o.damping;
+    if (o.fix_gauge && o.gauge_prior) {
+      // Zero residual, so only H changes: the step leaves the gauge directions
+      // alone. Its stiffness is relative to the system's, and the damping is
+      // scaled back so that it stays what it was without the prior.
+      const double stiffness = 1e3 * std::max(1.0, n.H.diagonal().cwiseAbs().maxCoeff());
+      n.H.block<3, 3>(imu::kP, imu::kP) += Mat3::Identity() * stiffness;
+      const Vec3 up = w->states.front().x.R_w_b.inverse() * Vec3::UnitZ();  // world yaw in the body's δθ
+      n.H.block<3, 3>(imu::kR, imu::kR) += (o.gauge_full_rotation ? Mat3::Identity() : Mat3(up * up.transpose())) * stiffness;
+      damping *= 1e-3;
+    }
+    const VectorXd step = perturbedCholeskySolve(n.H, -n.g, damping);
     if (!step.allFinite()) break;
     const NavState oldest = w->states.front().x;
     for (std::size_t k = 0; k < N; ++k) w->states[k].x = boxplus(w->states[k].x, step.segment<15>(15 * static_cast<long>(k)));
-    if (o.fix_gauge) {
+    if (o.fix_gauge && !o.gauge_prior) {
       // Re-anchor: rotate about z and shift so the oldest state keeps its yaw
       // and position; roll and pitch stay free (observable through gravity).
       const Vec3 axis = mostHorizontalAxis(oldest.R_w_b);
@@ -241,6 +277,18 @@ void marginalize(Window* w, std::size_t k, const SolverOptions& o) {
   for (std::size_t a = 1; a < involved.size(); ++a) {
     prior.states.push_back(involved[a]);
     prior.x0.push_back(w->states[involved[a]].x);
+  }
+  if (o.first_estimate_jacobians) {
+    // States already in the old prior keep their first estimate; b is moved
+    // there, so that the quadratic keeps its gradient at the current estimate.
+    VectorXd d = VectorXd::Zero(r);
+    for (std::size_t q = 0; q < w->prior.states.size(); ++q) {
+      const auto a = std::find(involved.begin(), involved.end(), w->prior.states[q]) - involved.begin();
+      if (a == 0) continue;  // the state leaving
+      prior.x0[static_cast<std::size_t>(a - 1)] = w->prior.x0[q];
+      d.segment<15>(15 * (a - 1)) = boxminus(w->states[w->prior.states[q]].x, w->prior.x0[q]);
+    }
+    prior.b -= prior.H * d;
   }
 
   // Remove state k and every link that touched it; renumber.

@@ -7,7 +7,10 @@
 // δ = x ⊟ x0 of the states it involves, x0 being their estimates when it was
 // made. Marginalising a state folds every link that touches it, and the old
 // prior, into a new prior by the Schur complement (eqs 20-21): nothing is
-// thrown away.
+// thrown away. With first-estimate Jacobians, a state keeps the x0 of the
+// first prior it entered for as long as it stays in one, and every factor's
+// Jacobians with respect to it are taken there: the unobservable directions
+// (world translation, rotation about gravity) then stay out of the prior.
 #include <vector>
 
 #include "edgevio/estimator/factors.h"
@@ -64,6 +67,13 @@ struct SolverOptions {
   bool fix_gauge = true;             ///< re-anchor the oldest state's position and yaw after each step (METHOD.md §5)
   bool gauge_full_rotation = false;  ///< re-anchor its whole attitude too (no IMU: roll and pitch are unobservable)
   double min_step = 1e-9;            ///< stop when the step norm is below this [-]
+  /// Gauge by a stiff zero-residual prior on the oldest state's position and
+  /// yaw (all of its attitude with gauge_full_rotation) instead of moving the
+  /// states after each step.
+  bool gauge_prior = false;
+  /// Jacobians of the states in the marginalisation prior at the prior's
+  /// linearisation point (first-estimate Jacobians), residuals at the estimate.
+  bool first_estimate_jacobians = false;
 };
 
 struct SolveSummary {
