@@ -113,30 +113,26 @@ template <class UseInertial, class UseVisual>
 void linearize(const Window& w, const SolverOptions& o, const std::map<std::size_t, long>& slot, bool with_prior,
                UseInertial use_inertial, UseVisual use_visual, Normal* n) {
   const std::vector<const NavState*> jp = jacobianPoints(w, o);
-  const auto moved = [&](std::size_t i) { return jp[i] != &w.states[i].x; };
+  // Jacobians in the residual's own call when they are taken at the estimate,
+  // in a second call at the first estimates otherwise.
+  const auto elsewhere = [&](std::size_t a, std::size_t b) {
+    return !n->cost_only && (jp[a] != &w.states[a].x || jp[b] != &w.states[b].x);
+  };
   for (const InertialLink& l : w.inertial) {
     if (!use_inertial(l)) continue;
     imu::Mat15 Ji, Jj;
-    Vec15 r;
-    if (!n->cost_only && (moved(l.i) || moved(l.j))) {
-      r = l.pre.residual(w.states[l.i].x, w.states[l.j].x);
-      l.pre.residual(*jp[l.i], *jp[l.j], &Ji, &Jj);
-    } else {
-      r = l.pre.residual(w.states[l.i].x, w.states[l.j].x, n->cost_only ? nullptr : &Ji, n->cost_only ? nullptr : &Jj);
-    }
+    const bool fej = elsewhere(l.i, l.j), here = !n->cost_only && !fej;
+    const Vec15 r = l.pre.residual(w.states[l.i].x, w.states[l.j].x, here ? &Ji : nullptr, here ? &Jj : nullptr);
+    if (fej) l.pre.residual(*jp[l.i], *jp[l.j], &Ji, &Jj);
     n->add<15>(r, l.information, {{slot.at(l.i), Ji}, {slot.at(l.j), Jj}});
   }
   for (const VisualLink& l : w.visual) {
     if (!use_visual(l)) continue;
     Mat6x15 Jr, Jn;
-    Vec6 r;
-    if (!n->cost_only && (moved(l.r) || moved(l.n))) {
-      r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c);
-      relativePoseResidual(l.link.T_nr, *jp[l.r], *jp[l.n], w.T_b_c, &Jr, &Jn);
-    } else {
-      r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c, n->cost_only ? nullptr : &Jr,
-                               n->cost_only ? nullptr : &Jn);
-    }
+    const bool fej = elsewhere(l.r, l.n), here = !n->cost_only && !fej;
+    const Vec6 r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c, here ? &Jr : nullptr,
+                                        here ? &Jn : nullptr);
+    if (fej) relativePoseResidual(l.link.T_nr, *jp[l.r], *jp[l.n], w.T_b_c, &Jr, &Jn);
     const Mat6 W = huberWeightedInformation(l.link.information, r, o.huber_translation_m, o.huber_rotation_deg * kDegToRad);
     n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}});
   }

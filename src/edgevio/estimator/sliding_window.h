@@ -64,7 +64,7 @@ struct SolverOptions {
   double huber_translation_m = 0.1;  ///< c_t of eq 24 [m]
   double huber_rotation_deg = 2.0;   ///< c_a of eq 25 [deg]
   double damping = 1e-9;             ///< first multiple of the identity tried by the perturbed Cholesky [-]
-  bool fix_gauge = true;             ///< re-anchor the oldest state's position and yaw after each step (METHOD.md §5)
+  bool fix_gauge = true;             ///< hold the oldest state's position and yaw (METHOD.md §5): re-anchoring, or gauge_prior
   bool gauge_full_rotation = false;  ///< re-anchor its whole attitude too (no IMU: roll and pitch are unobservable)
   double min_step = 1e-9;            ///< stop when the step norm is below this [-]
   /// Gauge by a stiff zero-residual prior on the oldest state's position and
