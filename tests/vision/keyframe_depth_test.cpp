@@ -1,0 +1,79 @@
+// Keyframe reference points: where on the image they sit and how deep.
+#include "edgevio/vision/keyframe_depth.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+
+#include "edgevio/sim/random.h"
+#include "edgevio/vision/edge_pyramid.h"
+
+namespace edgevio::vision {
+namespace {
+
+TEST(KeyframeDepth, ReferencePointsSitOnTheSubPixelEdge) {
+  // A vertical step between full-resolution columns 81 and 82, i.e. at
+  // x = 81.5, lies at x = (81.5 + 0.5) / 2 − 0.5 = 40.5 on level 0 (half
+  // resolution): exactly between two pixels, where Canny's pixels are 0.5 px
+  // off. The current frame's point-to-line residual measures against the
+  // sub-pixel edge, so a reference point must sit on it too, or identical
+  // views would align with an offset (with a disparity of 8 level-0 pixels,
+  // 0.5 px is 6 % of the depth in lateral position). A faint texture gives
+  // block matching something to match in the flat areas.
+  constexpr int kW = 160, kH = 120, kDisparityFull = 16;
+  sim::Rng rng(3);
+  cv::Mat texture(kH, kW + kDisparityFull, CV_32FC1);
+  for (int v = 0; v < texture.rows; ++v)
+    for (int u = 0; u < texture.cols; ++u) texture.at<float>(v, u) = static_cast<float>(8.0 * rng.uniform());
+  cv::GaussianBlur(texture, texture, cv::Size(5, 5), 1.0);
+  // Scene columns x_s; the left image sees x_s at x_s, the right at x_s − disparity.
+  const auto scene = [&](int x_s, int v) { return (x_s >= 82 ? 180.0f : 60.0f) + texture.at<float>(v, x_s); };
+  cv::Mat left_f(kH, kW, CV_32FC1), right_f(kH, kW, CV_32FC1);
+  for (int v = 0; v < kH; ++v)
+    for (int u = 0; u < kW; ++u) {
+      left_f.at<float>(v, u) = scene(u, v);
+      right_f.at<float>(v, u) = scene(u + kDisparityFull, v);
+    }
+  cv::GaussianBlur(left_f, left_f, cv::Size(7, 7), 1.5);
+  cv::GaussianBlur(right_f, right_f, cv::Size(7, 7), 1.5);
+  cv::Mat left, right;
+  left_f.convertTo(left, CV_8UC1);
+  right_f.convertTo(right, CV_8UC1);
+
+  camera::CameraModel cam;
+  cam.width = kW;
+  cam.height = kH;
+  cam.fx = cam.fy = 100.0;
+  cam.cx = 79.5;
+  cam.cy = 59.5;
+  VisionOptions o;
+  o.levels = 2;
+  o.stereo_num_disparities = 16;
+  const double baseline = 0.1;
+  const EdgePyramid pyr = buildEdgePyramid(left, cam, o);
+  ASSERT_TRUE(pyr.levels[0].dt.hasLines());
+  const KeyframeDepth depth = computeKeyframeDepth(pyr, downsample2(right), baseline, o);
+  const LevelCamera& c0 = pyr.levels[0].camera;
+  const double z_true = c0.fx * baseline / (kDisparityFull / 2.0);
+
+  int on_step = 0;
+  double sum_u = 0.0, worst = 0.0;
+  for (const Eigen::Vector3f& P : depth.points[0]) {
+    const double u = c0.fx * P.x() / P.z() + c0.cx, v = c0.fy * P.y() / P.z() + c0.cy;
+    if (std::abs(u - 40.5) > 2.0 || v < 8 || v > kH / 2 - 8) continue;  // the step, away from the borders
+    ++on_step;
+    sum_u += u;
+    worst = std::max(worst, std::abs(u - 40.5));
+    EXPECT_NEAR(P.z(), z_true, 0.1 * z_true);
+  }
+  ASSERT_GE(on_step, 30);
+  // The parabola through the gradient magnitude of a blurred step is exact up
+  // to the texture's perturbation; Canny's pixels would be 0.5 px off.
+  EXPECT_NEAR(sum_u / on_step, 40.5, 0.1);
+  EXPECT_LT(worst, 0.25);
+}
+
+}  // namespace
+}  // namespace edgevio::vision
