@@ -76,7 +76,7 @@ FrameResult Odometry::initializeWindow(tracking::PreparedFrame frame) {
   x.R_w_b = init_.R_w_b;
   x.b_g = init_.gyro_bias;
   if (t_prev_ < 0) {
-    r.track = tracker_.track(std::move(frame), poseOf(x), false);
+    r.track = tracker_.track(std::move(frame), poseOf(x), tracking::PredictionReliability::kNone);
   } else {
     r = processEdgeOnly(std::move(frame));
     x.R_w_b = r.track.T_w_b.so3();
@@ -126,13 +126,13 @@ FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
   const imu::NavState last = estimator_.newest();
   std::optional<imu::Preintegration> pre;
   SE3 T_w_b_pred = poseOf(last);
-  bool rotation_reliable = false;
+  auto reliable = tracking::PredictionReliability::kNone;
   if (inertial_) {
     pre = estimator_.preintegrateTo(imu_, t_ns);
     if (!pre) {
       // No IMU coverage between the frames: track from the last pose, and
       // start a new window here (the inertial chain is broken).
-      r.track = tracker_.track(std::move(frame), poseOf(last), false);
+      r.track = tracker_.track(std::move(frame), poseOf(last), tracking::PredictionReliability::kNone);
       imu::NavState x = last;
       x.R_w_b = r.track.T_w_b.so3();
       x.p_w = r.track.T_w_b.translation();
@@ -144,10 +144,10 @@ FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
       return r;
     }
     T_w_b_pred = poseOf(estimator::predictState(last, *pre));
-    rotation_reliable = true;
+    reliable = tracking::PredictionReliability::kPose;
   } else if (const auto dR = gyroRotation(t_prev_, t_ns, init_.gyro_bias)) {
     T_w_b_pred = SE3(last.R_w_b * *dR, last.p_w);  // the paper's guess: gyro rotation, previous translation
-    rotation_reliable = true;
+    reliable = tracking::PredictionReliability::kRotation;
   }
 
   tracker_.correctPoses([&](std::int64_t t) -> std::optional<SE3> {
@@ -155,7 +155,7 @@ FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
     return std::nullopt;
   });
   const auto keyframe_before = tracker_.keyframeTime();
-  r.track = tracker_.track(std::move(frame), T_w_b_pred, rotation_reliable);
+  r.track = tracker_.track(std::move(frame), T_w_b_pred, reliable);
   const tracking::FrameTrack& t = r.track;
   const bool aligned = t.aligned && t.self_check_passed;
   if (inertial_)

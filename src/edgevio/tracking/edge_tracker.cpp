@@ -41,10 +41,13 @@ void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const LazyImage& rig
   keyframe_ = Keyframe{std::move(data), T_w_c};
 }
 
-AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, const SE3& T_w_b_pred, bool have_gyro,
-                                             bool* gyro_check_failed) const {
+AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, const SE3& T_w_b_pred,
+                                             PredictionReliability reliable, FrameTrack* checks) const {
   const SE3 T_nr_init = (T_w_b_pred * T_b_c_).inverse() * keyframe_->T_w_c;
   AlignmentResult r = alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_);
+  const auto realignFine = [&] {
+    return alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1);
+  };
   // Gyro check: the gyroscope's rotation over one frame is accurate to a
   // fraction of a degree; an alignment far from it has converged to a wrong
   // minimum (repetitive texture), so re-align from the prediction on the fine
@@ -52,15 +55,27 @@ AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, con
   const auto rotationError = [&](const SE3& T_nr) {
     return geometry::angle(T_nr.so3().inverse() * T_nr_init.so3()) * 180.0 / 3.14159265358979323846;
   };
-  *gyro_check_failed = false;
-  if (have_gyro && rotationError(r.T_nr) > tracking_.gyro_check_deg) {
-    *gyro_check_failed = true;
-    const AlignmentResult fine =
-        alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1);
+  if (reliable != PredictionReliability::kNone && rotationError(r.T_nr) > tracking_.gyro_check_deg) {
+    checks->gyro_check_failed = true;
+    const AlignmentResult fine = realignFine();
     const double ms = r.ms;
     r = fine;
     r.ms += ms;
     if (rotationError(fine.T_nr) > tracking_.gyro_check_deg) r.self_check_passed = false;
+    return r;
+  }
+  // Translation check: parallel edges (stripes, planks) leave the alignment
+  // free along them, and the coarse levels' wide basin can slide a stripe or
+  // more. The IMU's prediction from the window's newest state is good to a few
+  // centimetres over one frame; far from it, re-align from it on the fine
+  // levels, and keep whichever result lies closer to the edges.
+  if (reliable == PredictionReliability::kPose && tracking_.imu_translation_check_m > 0 &&
+      (r.T_nr.translation() - T_nr_init.translation()).norm() > tracking_.imu_translation_check_m) {
+    checks->translation_check_failed = true;
+    AlignmentResult fine = realignFine();
+    fine.ms += r.ms;
+    if (fine.self_check_passed && fine.mean_distance_px <= r.mean_distance_px) return fine;
+    r.ms = fine.ms;
   }
   return r;
 }
@@ -70,12 +85,13 @@ PreparedFrame prepareFrame(const StereoFrame& frame, const camera::StereoRectifi
 }
 
 FrameTrack EdgeTracker::track(PreparedFrame frame, const std::optional<SO3>& R_prev_cur, const SE3& T_w_b_init) {
-  if (!keyframe_) return track(std::move(frame), T_w_b_init, false);
+  if (!keyframe_) return track(std::move(frame), T_w_b_init, PredictionReliability::kNone);
   // Prediction: rotation from the gyroscope, translation from the previous estimate(s).
   const SO3 R_pred = T_w_b_prev_.so3() * (R_prev_cur ? *R_prev_cur : SO3());
   Vec3 p_pred = T_w_b_prev_.translation();
   if (tracking_.translation_prior == "constant_velocity") p_pred += T_w_b_prev_.translation() - T_w_b_prev2_.translation();
-  return track(std::move(frame), SE3(R_pred, p_pred), R_prev_cur.has_value());
+  return track(std::move(frame), SE3(R_pred, p_pred),
+               R_prev_cur ? PredictionReliability::kRotation : PredictionReliability::kNone);
 }
 
 void EdgeTracker::correctPoses(const std::function<std::optional<SE3>(std::int64_t)>& pose_of) {
@@ -102,7 +118,7 @@ std::optional<std::int64_t> EdgeTracker::keyframeTime() const {
   return keyframe_->data->t_ns;
 }
 
-FrameTrack EdgeTracker::track(PreparedFrame frame, const SE3& T_w_b_pred, bool rotation_reliable) {
+FrameTrack EdgeTracker::track(PreparedFrame frame, const SE3& T_w_b_pred, PredictionReliability reliable) {
   FrameTrack out;
   out.t_ns = frame.t_ns;
   last_t_ns_ = frame.t_ns;
@@ -122,7 +138,7 @@ FrameTrack EdgeTracker::track(PreparedFrame frame, const SE3& T_w_b_pred, bool r
   out.aligned = true;
   out.reference_points = static_cast<int>(keyframe_->data->depth.points.empty() ? 0 : keyframe_->data->depth.points[0].size());
   out.reference_t_ns = keyframe_->data->t_ns;
-  out.alignment = alignToKeyframe(pyr, T_w_b_pred, rotation_reliable, &out.gyro_check_failed);
+  out.alignment = alignToKeyframe(pyr, T_w_b_pred, reliable, &out);
   if (!out.alignment.self_check_passed && previous_) {
     // Motion since the keyframe was too large: the previous frame, tracked
     // and closer to this one, becomes the keyframe, and alignment is retried.
@@ -133,11 +149,9 @@ FrameTrack EdgeTracker::track(PreparedFrame frame, const SE3& T_w_b_pred, bool r
     out.reference_t_ns = keyframe_->data->t_ns;
     out.bm_ms += promoted.bm_ms;
     out.reference_points = static_cast<int>(keyframe_->data->depth.points[0].size());
-    bool gyro_failed = false;
     const double first_ms = out.alignment.ms;
-    out.alignment = alignToKeyframe(pyr, T_w_b_pred, rotation_reliable, &gyro_failed);
+    out.alignment = alignToKeyframe(pyr, T_w_b_pred, reliable, &out);
     out.alignment.ms += first_ms;
-    out.gyro_check_failed = out.gyro_check_failed || gyro_failed;
   }
   out.self_check_passed = out.alignment.self_check_passed;
 

@@ -75,6 +75,7 @@ struct FrameTrack {
   bool aligned = false;           ///< an alignment was attempted (not for the first frame)
   bool self_check_passed = false;
   bool gyro_check_failed = false; ///< the first alignment disagreed with the gyroscope (re-aligned)
+  bool translation_check_failed = false; ///< the first alignment's translation was far from the IMU prediction (re-aligned)
   bool promoted_previous = false; ///< alignment to the keyframe failed; the previous frame became a keyframe
   bool right_image_unreadable = false;  ///< a new keyframe's right image did not decode: it has no depth
   std::string keyframe_reason;    ///< why it became a keyframe
@@ -83,6 +84,11 @@ struct FrameTrack {
   std::int64_t reference_t_ns = -1;  ///< timestamp of that keyframe (the tracking link's reference)
   double canny_ms = 0, dt_ms = 0, lines_ms = 0, bm_ms = 0;  ///< dt_ms includes lines_ms
 };
+
+/// What of a pose prediction the tracker's checks may trust: nothing (a first
+/// frame, no IMU), its rotation (gyroscope: the gyro check), or all of it (the
+/// IMU's prediction from the window's newest state: the translation check too).
+enum class PredictionReliability { kNone, kRotation, kPose };
 
 class EdgeTracker {
  public:
@@ -97,9 +103,9 @@ class EdgeTracker {
 
   /// The same with a full-pose prediction (the IMU's, METHOD.md §5): the
   /// initial guess of the alignment, the pose of a first frame, and the
-  /// frame's pose when the alignment fails. `rotation_reliable` enables the
-  /// gyro check against the predicted rotation.
-  FrameTrack track(PreparedFrame frame, const geometry::SE3& T_w_b_pred, bool rotation_reliable);
+  /// frame's pose when the alignment fails. `reliable` says which checks
+  /// against the prediction apply.
+  FrameTrack track(PreparedFrame frame, const geometry::SE3& T_w_b_pred, PredictionReliability reliable);
 
   /// Replaces the poses of the keyframe and of the last frame with better
   /// estimates (the window's), looked up by timestamp.
@@ -121,9 +127,10 @@ class EdgeTracker {
   };
   void makeKeyframe(vision::EdgePyramid pyramid, const LazyImage& right_full, const geometry::SE3& T_w_c, std::int64_t t_ns,
                     FrameTrack* out);
-  /// Aligns `pyr` to the current keyframe from `T_w_b_pred`, with the gyro check.
-  AlignmentResult alignToKeyframe(const vision::EdgePyramid& pyr, const geometry::SE3& T_w_b_pred, bool have_gyro,
-                                  bool* gyro_check_failed) const;
+  /// Aligns `pyr` to the current keyframe from `T_w_b_pred`, with the gyro and
+  /// translation checks; sets the flags of the checks that failed in `checks`.
+  AlignmentResult alignToKeyframe(const vision::EdgePyramid& pyr, const geometry::SE3& T_w_b_pred,
+                                  PredictionReliability reliable, FrameTrack* checks) const;
   /// The previous frame, kept so that it can become a keyframe when the current
   /// frame fails to align to the old one (its pose is already known).
   struct Previous {

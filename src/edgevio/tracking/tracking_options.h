@@ -10,7 +10,8 @@ struct TrackingOptions {
   double keyframe_min_visible_ratio = 0.8;   ///< new keyframe when fewer of its points remain visible [-]
   std::string translation_prior = "previous";  ///< initial translation: previous (paper) | constant_velocity
   double gyro_check_deg = 3.0;               ///< alignment rotation vs gyro prediction; larger: re-align from the prediction [deg]
-  int gyro_check_realign_levels = 2;         ///< levels used when re-aligning after a failed gyro check [-]
+  int gyro_check_realign_levels = 2;         ///< levels used when re-aligning after a failed gyro or translation check [-]
+  double imu_translation_check_m = 0.05;     ///< alignment translation vs the IMU prediction; farther: re-align from the prediction on fine levels; 0: off [m]
   int lost_after_failures = 10;              ///< this many consecutive self-check failures: the run is lost [-]
   double static_init_window_s = 1.0;         ///< IMU window at the start used for static initialisation [s]
   double static_accel_std_max = 0.3;         ///< static if the spread of 0.1 s accelerometer means is below this [m/s²]
@@ -23,7 +24,8 @@ struct TrackingOptions {
     v("keyframe_min_visible_ratio", keyframe_min_visible_ratio, "-", "new keyframe when fewer of its points stay in view");
     v("translation_prior", translation_prior, "-", "initial translation of an alignment: previous (paper) | constant_velocity");
     v("gyro_check_deg", gyro_check_deg, "deg", "alignment vs gyro rotation; larger: re-align from the prediction on fine levels");
-    v("gyro_check_realign_levels", gyro_check_realign_levels, "-", "pyramid levels used for that re-alignment");
+    v("gyro_check_realign_levels", gyro_check_realign_levels, "-", "pyramid levels used for that re-alignment (and the translation check's)");
+    v("imu_translation_check_m", imu_translation_check_m, "m", "alignment vs IMU-predicted translation; farther: re-align from the prediction on fine levels, keep the closer fit (0: off)");
     v("lost_after_failures", lost_after_failures, "-", "consecutive self-check failures after which the run counts as lost");
     v("static_init_window_s", static_init_window_s, "s", "IMU window at the start used for static initialisation");
     v("static_accel_std_max", static_accel_std_max, "m/s^2", "static if the spread of 0.1 s accelerometer means is below this");
