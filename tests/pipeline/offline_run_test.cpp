@@ -144,9 +144,17 @@ TEST(OfflineRun, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
               r.are_rot_deg_per_m, r.are_trans_m_per_m);
   EXPECT_LT(r.ate_rmse_m, 0.03);  // measured 0.017 m (edge-only: 0.025 m)
   const std::string header = test::readFile(a.file("frames.csv")).substr(0, 400);
-  for (const char* column : {"external_check", "est_iterations", "est_final_cost", "marginalized", "solve_ms", "marginalize_ms"})
+  for (const char* column : {"prediction_check", "external_check", "est_iterations", "est_final_cost", "marginalized",
+                             "solve_ms", "marginalize_ms"})
     EXPECT_NE(header.find(column), std::string::npos) << column;
-  EXPECT_NE(test::readFile(a.file("summary.json")).find("\"estimator_resets\": 0"), std::string::npos);
+  const std::string summary = test::readFile(a.file("summary.json"));
+  EXPECT_NE(summary.find("\"estimator_resets\": 0"), std::string::npos);
+  EXPECT_NE(summary.find("\"translation_check_realignments\""), std::string::npos);
+  // The counts match the rows of frames.csv that name the check.
+  const std::string rows = test::readFile(a.file("frames.csv"));
+  std::size_t translation_rows = 0;
+  for (std::size_t at = 0; (at = rows.find(",translation,", at)) != std::string::npos; ++at) ++translation_rows;
+  EXPECT_NE(summary.find("\"translation_check_realignments\": " + std::to_string(translation_rows)), std::string::npos);
 }
 
 TEST(OfflineRun, ShortRevisitingRenderLoopClosureLowersAte) {
