@@ -42,8 +42,8 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   std::ofstream frames_csv(fs::path(req.out_dir) / "frames.csv");
   if (!frames_csv) throw InputError(req.out_dir, 0, "cannot write to the output folder");
   frames_csv << "timestamp_ns,keyframe,keyframe_reason,aligned,self_check,reference_points,points_used,visible_ratio,"
-                "iterations,mean_distance_px,prediction_check,external_check,external_rotation_deg,external_translation_m,est_iterations,"
-                "est_initial_cost,est_final_cost,marginalized,loop_candidates,loop_accepted,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,"
+                "iterations,mean_distance_px,prediction_check,external_check,external_rotation_deg,external_translation_m,"
+                "est_iterations,est_initial_cost,est_final_cost,marginalized,loop_candidates,loop_accepted,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,"
                 "solve_ms,marginalize_ms,loop_ms,total_ms\n";
   {
     std::ofstream cfg(fs::path(req.out_dir) / "config.yaml");
@@ -205,7 +205,8 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
                                             : t.keyframe_reason.c_str(),
                   t.aligned ? 1 : 0, t.self_check_passed ? 1 : 0, t.reference_points, t.alignment.points_used,
                   t.alignment.visible_ratio, t.alignment.iterations, t.alignment.mean_distance_px,
-                  t.gyro_check_failed ? "gyro" : t.translation_check_failed ? "translation" : "-", fr.external_check.c_str(), fr.external.rotation_deg, fr.external.translation_m, e.iterations,
+                  t.gyro_check_failed ? "gyro" : t.translation_check_failed ? "translation" : "-",
+                  fr.external_check.c_str(), fr.external.rotation_deg, fr.external.translation_m, e.iterations,
                   e.initial_cost, e.final_cost, e.marginalized.c_str(), fr.loop.candidates, fr.loop.accepted, t.canny_ms,
                   t.dt_ms - t.lines_ms, t.lines_ms, t.bm_ms, t.alignment.ms, e.solve_ms, e.marginalize_ms,
                   fr.loop_ran ? fr.loop.ms : 0.0, total_ms);
