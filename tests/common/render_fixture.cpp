@@ -1,6 +1,7 @@
 #include "common/render_fixture.h"
 
 #include "edgevio/io/calibration_io.h"
+#include "edgevio/sim/renderer.h"
 #include "edgevio/sim/trajectory_source.h"
 
 namespace edgevio::test {
@@ -26,6 +27,13 @@ tracking::StereoFrame RenderFixture::frame(const geometry::SE3& T_w_b, std::int6
   f.left = rect_->rectify(0, raw[0]);
   f.right = rect_->rectify(1, raw[1]);
   return f;
+}
+
+cv::Mat RenderFixture::rectifiedDepth(const geometry::SE3& T_w_b) const {
+  const sim::RayTable rays(rect_->rectifiedCamera());
+  cv::Mat radiance, depth;
+  sim::render(scene_, rays, T_w_b * rect_->T_b_rect(0), sim::RenderOptions{}, &radiance, &depth);
+  return depth;
 }
 
 }  // namespace edgevio::test

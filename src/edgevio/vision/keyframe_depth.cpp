@@ -11,18 +11,18 @@ KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right
   KeyframeDepth out;
   const auto t0 = std::chrono::steady_clock::now();
   cv::Ptr<cv::StereoBM> bm = cv::StereoBM::create(o.stereo_num_disparities, o.stereo_block_size);
-  cv::Mat disp16;
-  bm->compute(left.levels[0].image, right_level0, disp16);
+  cv::Mat_<float> disparity;  // a float output skips the biased 1/16-px rounding of CV_16S
+  bm->compute(left.levels[0].image, right_level0, disparity);
   out.bm_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
   // Level 0 inverse depth and variance; NaN marks invalid pixels.
   const LevelCamera& c0 = left.levels[0].camera;
   const double fb = c0.fx * baseline_m;
   const auto var0 = static_cast<float>((o.stereo_disparity_sigma / fb) * (o.stereo_disparity_sigma / fb));
-  cv::Mat rho(disp16.size(), CV_32FC1), var(disp16.size(), CV_32FC1);
-  for (int v = 0; v < disp16.rows; ++v)
-    for (int u = 0; u < disp16.cols; ++u) {
-      const float d = disp16.at<short>(v, u) / 16.0f;
+  cv::Mat rho(disparity.size(), CV_32FC1), var(disparity.size(), CV_32FC1);
+  for (int v = 0; v < disparity.rows; ++v)
+    for (int u = 0; u < disparity.cols; ++u) {
+      const float d = disparity(v, u);
       const bool ok = d >= o.stereo_min_disparity && d > 0.0f;
       rho.at<float>(v, u) = ok ? static_cast<float>(d / fb) : 0.0f;
       var.at<float>(v, u) = ok ? var0 : 0.0f;  // 0 = invalid
