@@ -14,6 +14,8 @@ struct EstimatorOptions {
   double damping = 1e-9;                      ///< first λ of the perturbed Cholesky, relative to the largest diagonal entry [-]
   double external_check_rotation_deg = 3.0;   ///< reject a tracking link this far in rotation from the IMU prediction [deg]
   double external_check_translation_m = 0.2;  ///< ... or this far in translation [m]
+  double loop_check_rotation_deg = 1.0;       ///< reject a loop link this far in rotation from the window's estimate of it [deg]
+  double loop_check_translation_m = 0.1;      ///< ... or this far in translation [m]
   double front_translation_m = 0.3;           ///< front marginalisation when ‖Δp‖/this + angle/front_rotation_deg < 1 [m]
   double front_rotation_deg = 10.0;           ///< (distance of the second-newest state to the keyframe) [deg]
   double visual_covariance_scale = 10.0;      ///< a tracking link's covariance is the alignment's (JᵀWJ)⁻¹ times this [-]
@@ -40,6 +42,8 @@ struct EstimatorOptions {
     v("damping", damping, "-", "first lambda of the perturbed Cholesky, relative to the largest diagonal entry");
     v("external_check_rotation_deg", external_check_rotation_deg, "deg", "reject a tracking link this far in rotation from the IMU prediction");
     v("external_check_translation_m", external_check_translation_m, "m", "... or this far in translation");
+    v("loop_check_rotation_deg", loop_check_rotation_deg, "deg", "IMU modes: reject a loop link this far in rotation from the window's estimate of the same relative pose");
+    v("loop_check_translation_m", loop_check_translation_m, "m", "... or this far in translation");
     v("front_translation_m", front_translation_m, "m", "front marginalisation when |dp|/this + angle/front_rotation_deg < 1 (second-newest vs keyframe)");
     v("front_rotation_deg", front_rotation_deg, "deg", "rotation scale of that distance");
     v("visual_covariance_scale", visual_covariance_scale, "-", "tracking-link covariance = alignment (J'WJ)^-1 times this");

@@ -23,6 +23,7 @@ std::string EstimatorOptions::validate() const {
   if (!(huber_translation_m > 0 && huber_rotation_deg > 0)) return "huber_*: must be > 0";
   if (!(damping > 0)) return "damping: must be > 0";
   if (!(external_check_rotation_deg > 0 && external_check_translation_m > 0)) return "external_check_*: must be > 0";
+  if (!(loop_check_rotation_deg > 0 && loop_check_translation_m > 0)) return "loop_check_*: must be > 0";
   if (!(front_translation_m > 0 && front_rotation_deg > 0)) return "front_*: must be > 0";
   if (!(visual_covariance_scale > 0)) return "visual_covariance_scale: must be > 0";
   if (!(imu_noise_inflation > 0)) return "imu_noise_inflation: must be > 0";
@@ -124,7 +125,12 @@ bool VioEstimator::addVisualLink(std::size_t r, std::size_t n, const SE3& T_nr, 
 
 bool VioEstimator::addLoopLink(std::int64_t t_ref_ns, std::int64_t t_new_ns, const SE3& T_nr, const Mat6& covariance) {
   const auto r = indexOf(t_ref_ns), n = indexOf(t_new_ns);
-  return r && n && *r != *n && addVisualLink(*r, *n, T_nr, covariance);
+  if (!r || !n || *r == *n) return false;
+  if (inertial_ && !externalCheck(T_nr, window_.states[*r].x, window_.states[*n].x, window_.T_b_c,
+                                  options_.loop_check_rotation_deg, options_.loop_check_translation_m)
+                       .accepted)
+    return false;
+  return addVisualLink(*r, *n, T_nr, covariance);
 }
 
 std::optional<ExternalCheckResult> VioEstimator::offerTrackingLink(std::int64_t t_ref_ns, const SE3& T_nr,

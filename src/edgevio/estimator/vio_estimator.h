@@ -65,7 +65,11 @@ class VioEstimator {
   void addStateWithoutImu(std::int64_t t_ns, const geometry::SE3& T_w_b);
 
   /// A loop-closure link between two keyframes in the window (METHOD.md §6);
-  /// false when either has left it.
+  /// false when either has left it, or, with the IMU, when it is farther than
+  /// loop_check_rotation_deg / loop_check_translation_m from the window's own
+  /// estimate of the same relative pose. Both keyframes are in the window, a
+  /// few seconds apart, where the IMU-backed estimate has drifted by
+  /// centimetres; a loop link far from it matched a similar-looking place.
   bool addLoopLink(std::int64_t t_ref_ns, std::int64_t t_new_ns, const geometry::SE3& T_nr, const Mat6& covariance);
 
   /// Offers a tracking link from the state at t_ref to the newest state,

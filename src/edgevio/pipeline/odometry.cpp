@@ -108,8 +108,11 @@ void Odometry::closeLoops(FrameResult* r) {
   if (!loop_) return;
   r->loop_ran = true;
   const loop::LoopKeyframe latest{latest_data, poseOf(*latest_state) * T_b_c_};
-  for (const loop::LoopLink& l : loop::closeLoops(latest, older, config_.loop, config_.alignment, &r->loop))
-    loop_closures_ += estimator_.addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
+  for (const loop::LoopLink& l : loop::closeLoops(latest, older, config_.loop, config_.alignment, &r->loop)) {
+    const bool added = estimator_.addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
+    loop_closures_ += added;
+    r->loop.window_rejections += !added;
+  }
 }
 
 FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
