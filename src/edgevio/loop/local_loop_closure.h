@@ -36,7 +36,7 @@ struct LoopLink {
 
 struct LoopStats {
   int candidates = 0, coarse_attempts = 0, cross_check_failures = 0, full_attempts = 0, accepted = 0;
-  int window_rejections = 0;  ///< accepted here, then refused by the estimator's loop check (set by the pipeline)
+  int window_rejections = 0;  ///< accepted here, then refused by the estimator (its loop check; set by the pipeline)
   double ms = 0.0;
 };
 

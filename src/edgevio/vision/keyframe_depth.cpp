@@ -15,7 +15,7 @@ KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right
   bm->compute(left.levels[0].image, right_level0, disparity);
   out.bm_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
-  // Level 0 inverse depth and variance; NaN marks invalid pixels.
+  // Level 0 inverse depth and variance; a variance of 0 marks an invalid pixel.
   const LevelCamera& c0 = left.levels[0].camera;
   const double fb = c0.fx * baseline_m;
   const auto var0 = static_cast<float>((o.stereo_disparity_sigma / fb) * (o.stereo_disparity_sigma / fb));
