@@ -183,11 +183,11 @@ AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref,
     res.visible_ratio = s.considered == 0 ? 0.0 : static_cast<double>(s.visible) / static_cast<double>(s.considered);
     res.mean_distance_px = s.visible > 0 ? s.sum_r / s.visible : std::numeric_limits<double>::infinity();
     const Eigen::LDLT<Mat6> ldlt(s.H);
-    if (s.visible >= o.min_points && ldlt.info() == Eigen::Success && ldlt.isPositive())
-      res.covariance = ldlt.solve(Mat6::Identity());
-    else
-      res.covariance = Mat6::Identity() * 1e6;
-    res.self_check_passed = s.visible >= o.min_points &&
+    // A singular H leaves the pose free along some direction (a blank or
+    // one-edge view): such a result cannot pass, though the distance check may pass.
+    const bool constrained = s.visible >= o.min_points && ldlt.info() == Eigen::Success && ldlt.isPositive();
+    res.covariance = constrained ? Mat6(ldlt.solve(Mat6::Identity())) : Mat6(Mat6::Identity() * 1e6);
+    res.self_check_passed = constrained && res.covariance.allFinite() &&
                             res.mean_distance_px <= std::ldexp(o.self_check_max_mean_distance_px, -finest) &&
                             res.visible_ratio >= o.self_check_min_visible_ratio;
   }
