@@ -68,7 +68,8 @@ struct AlignmentCase {
 
 /// Renders the keyframe at path sample i and the current frame `frames` camera
 /// frames (50 ms each) later, aligns from `init` (identity if null).
-AlignmentCase alignAlongPath(const test::RenderFixture& fx, std::size_t i, int frames, const SE3* init = nullptr) {
+AlignmentCase alignAlongPath(const test::RenderFixture& fx, std::size_t i, int frames, const SE3* init = nullptr,
+                             const RotationPrior* rotation_prior = nullptr) {
   const auto& path = fx.path();
   const std::size_t j = i + static_cast<std::size_t>(frames) * 10;  // 200 Hz samples
   const SE3 T_b_c = fx.rectifier().T_b_rect(0);
@@ -80,7 +81,7 @@ AlignmentCase alignAlongPath(const test::RenderFixture& fx, std::size_t i, int f
   const vision::EdgePyramid cur_pyr = vision::buildEdgePyramid(cur.left, fx.rectifier().rectifiedCamera(), vo);
   AlignmentCase c;
   c.truth = (path[j].T_w_b * T_b_c).inverse() * (path[i].T_w_b * T_b_c);
-  c.result = alignEdges(depth.points, cur_pyr, init ? *init : SE3(), ao);
+  c.result = alignEdges(depth.points, cur_pyr, init ? *init : SE3(), ao, -1, 0, rotation_prior);
   c.reference_points = static_cast<int>(depth.points[0].size());
   return c;
 }
@@ -143,6 +144,60 @@ TEST(EdgeAlignment, FiveFramesApartFromIdentity) {
   EXPECT_GE(n, 5);
   EXPECT_LT(t, 0.01);
   EXPECT_LT(r, 0.25);
+}
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+TEST(EdgeAlignment, AStiffRotationPriorHoldsTheRotationFiveFramesApart) {
+  // The prior's residual is Log(R_priorᵀ R) with information 1/σ² per level-0
+  // pixel of edge noise; at σ = 1e-3 deg it outweighs the ~2000 edge points
+  // by far, so the result's rotation must sit on the prior, even a prior
+  // 0.3 deg off the truth (a sign error would push it away instead), and the
+  // translation absorbs what is left.
+  int tested = 0;
+  for (std::size_t i = 500; i < 2500; i += 520) {
+    const AlignmentCase free = alignAlongPath(fixture(), i, 5);
+    const SO3 R_truth = free.truth.so3();
+    const RotationPrior prior{R_truth * SO3::exp(Vec3(0.3, -0.2, 0.1).normalized() * 0.3 * kDeg), 1e-3 * kDeg};
+    const AlignmentCase held = alignAlongPath(fixture(), i, 5, nullptr, &prior);
+    const double off_prior = geometry::angle(prior.R_nr.inverse() * held.result.T_nr.so3()) / kDeg;
+    std::printf("  sample %zu: without prior %.3f deg off the truth; with it %.4f deg off the prior\n", i,
+                geometry::angle(R_truth.inverse() * free.result.T_nr.so3()) / kDeg, off_prior);
+    EXPECT_LT(off_prior, 0.01) << "sample " << i;
+    ++tested;
+  }
+  EXPECT_GE(tested, 3);
+}
+
+TEST(EdgeAlignment, ARotationPriorAtTheTruthMakesLinksFiveFramesApartNoWorse) {
+  // A prior where a perfect gyroscope puts it (at the truth, σ = 0.05 deg,
+  // the default) adds information: the links must keep the bounds of
+  // FiveFramesApartFromIdentity and their mean errors must not grow.
+  double worst_t = 0.0, worst_r = 0.0, sum[2][2] = {};
+  int n = 0;
+  for (std::size_t i = 500; i + 50 < 2600; i += 260) {
+    const AlignmentCase free = alignAlongPath(fixture(), i, 5);
+    if (free.reference_points < 2000) continue;
+    const RotationPrior prior{free.truth.so3(), 0.05 * kDeg};
+    const AlignmentCase held = alignAlongPath(fixture(), i, 5, nullptr, &prior);
+    double t, r;
+    errors(free, &t, &r);
+    sum[0][0] += t;
+    sum[0][1] += r;
+    errors(held, &t, &r);
+    sum[1][0] += t;
+    sum[1][1] += r;
+    worst_t = std::max(worst_t, t);
+    worst_r = std::max(worst_r, r);
+    ++n;
+  }
+  std::printf("five frames apart: mean error %.4f m %.4f deg without the prior, %.4f m %.4f deg with it; worst with it %.4f m %.4f deg\n",
+              sum[0][0] / n, sum[0][1] / n, sum[1][0] / n, sum[1][1] / n, worst_t, worst_r);
+  EXPECT_GE(n, 5);
+  EXPECT_LT(worst_t, 0.01);
+  EXPECT_LT(worst_r, 0.25);
+  EXPECT_LE(sum[1][0], sum[0][0]);
+  EXPECT_LE(sum[1][1], sum[0][1]);
 }
 
 }  // namespace

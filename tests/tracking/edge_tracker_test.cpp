@@ -1,4 +1,5 @@
-// The tracker's translation check against the IMU's pose prediction.
+// The tracker's use of the IMU: the translation check against its pose
+// prediction, and the gyroscope's rotation as the alignment's prior.
 #include "edgevio/tracking/edge_tracker.h"
 
 #include <gtest/gtest.h>
@@ -62,6 +63,34 @@ TEST(EdgeTracker, AWrongPredictionDoesNotDragAGoodAlignment) {
   const Outcome rotation = trackFrom(kSample, offset, PredictionReliability::kRotation);
   EXPECT_FALSE(rotation.track.translation_check_failed);
   EXPECT_LT(rotation.error_m, 0.01);
+}
+
+TEST(EdgeTracker, TheGyroRotationSinceTheKeyframeIsTheAlignmentsRotationPrior) {
+  // A stiff prior (1e-3 deg) from a gyroscope that is 0.3 deg off about the
+  // body x axis: the tracked attitude must be the keyframe's times that body
+  // rotation, which checks the time it is asked for (the keyframe's) and its
+  // conversion from the body into the camera frame.
+  const auto& fx = fixture();
+  const auto& path = fx.path();
+  const std::size_t i = kSample, j = kSample + 30;
+  const vision::VisionOptions vo;
+  TrackingOptions to;
+  to.rotation_prior_deg = 1e-3;
+  to.rotation_prior_fraction = 0.0;
+  EdgeTracker tracker(fx.rectifier(), vo, AlignmentOptions(), to);
+  tracker.track(prepareFrame(fx.frame(path[i].T_w_b, 0, i), fx.rectifier(), vo), path[i].T_w_b, PredictionReliability::kNone);
+  const geometry::SO3 R_gyro = path[i].T_w_b.so3().inverse() * path[j].T_w_b.so3() * geometry::SO3::exp(Vec3(0.3 * 3.14159265358979 / 180.0, 0.0, 0.0));
+  std::vector<std::int64_t> asked;
+  const FrameTrack t = tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), path[j].T_w_b,
+                                     PredictionReliability::kPose, [&](std::int64_t t_ref) -> std::optional<geometry::SO3> {
+                                       asked.push_back(t_ref);
+                                       return R_gyro;
+                                     });
+  ASSERT_TRUE(t.self_check_passed);
+  ASSERT_FALSE(asked.empty());
+  for (const std::int64_t t_ref : asked) EXPECT_EQ(t_ref, 0);
+  const double off_deg = geometry::angle((path[i].T_w_b.so3() * R_gyro).inverse() * t.T_w_b.so3()) * 180.0 / 3.14159265358979;
+  EXPECT_LT(off_deg, 0.01);
 }
 
 }  // namespace

@@ -158,7 +158,12 @@ FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
     return std::nullopt;
   });
   const auto keyframe_before = tracker_.keyframeTime();
-  r.track = tracker_.track(std::move(frame), T_w_b_pred, reliable);
+  // The gyroscope alone, with the window's bias, since the keyframe: the
+  // alignment's rotation prior. Not the window's relative estimate, which
+  // the same links pulled: a prior from it would feed their errors back.
+  tracking::EdgeTracker::GyroSince gyro_since;
+  if (inertial_) gyro_since = [&](std::int64_t t_ref) { return gyroRotation(t_ref, t_ns, last.b_g); };
+  r.track = tracker_.track(std::move(frame), T_w_b_pred, reliable, gyro_since);
   const tracking::FrameTrack& t = r.track;
   const bool aligned = t.aligned && t.self_check_passed;
   if (inertial_)

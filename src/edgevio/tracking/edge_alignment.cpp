@@ -134,7 +134,8 @@ LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const SE3& T, 
 }  // namespace
 
 AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref, const vision::EdgePyramid& cur,
-                           const SE3& T_init, const AlignmentOptions& o, int coarsest, int finest) {
+                           const SE3& T_init, const AlignmentOptions& o, int coarsest, int finest,
+                           const RotationPrior* prior) {
   const auto t0 = std::chrono::steady_clock::now();
   AlignmentResult res;
   const bool laplacian = o.weight == "laplacian";
@@ -163,9 +164,17 @@ AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref,
         break;
       }
       ++res.iterations;
-      const Eigen::LDLT<Mat6> ldlt(s.H);
+      Mat6 H = s.H;
+      Vec6 g = s.g;
+      if (prior && prior->sigma_rad > 0) {
+        // r = Log(R_nrᵀ R), ∂r/∂δθ ≈ I for the right perturbation R·Exp(δθ).
+        const double lambda = std::ldexp(1.0, -2 * l) / (prior->sigma_rad * prior->sigma_rad);
+        H.bottomRightCorner<3, 3>() += lambda * Mat3::Identity();
+        g.tail<3>() += lambda * (prior->R_nr.inverse() * T.so3()).log();
+      }
+      const Eigen::LDLT<Mat6> ldlt(H);
       if (ldlt.info() != Eigen::Success) break;
-      const Vec6 xi = ldlt.solve(-s.g);
+      const Vec6 xi = ldlt.solve(-g);
       if (!xi.allFinite()) break;
       T = T * SE3::exp(xi);
       if (xi.norm() < o.min_step) break;
@@ -184,7 +193,7 @@ AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref,
     res.mean_distance_px = s.visible > 0 ? s.sum_r / s.visible : std::numeric_limits<double>::infinity();
     const Eigen::LDLT<Mat6> ldlt(s.H);
     // A singular H leaves the pose free along some direction (a blank or
-    // one-edge view): such a result cannot pass, though the distance check may pass.
+    // one-edge view): such a result cannot pass, however close to the edges.
     const bool constrained = s.visible >= o.min_points && ldlt.info() == Eigen::Success && ldlt.isPositive();
     res.covariance = constrained ? Mat6(ldlt.solve(Mat6::Identity())) : Mat6(Mat6::Identity() * 1e6);
     res.self_check_passed = constrained && res.covariance.allFinite() &&

@@ -9,7 +9,10 @@
 // V's cone tip stalls Gauss-Newton at ~0.5 px (see vision/distance_transform.h).
 // Gauss-Newton on SE(3) with right perturbations T ← T·exp(ξ), ξ = (δp, δθ):
 //   J_i = ∇V(u)ᵀ · ∂π/∂P' · R·[I | −hat(P_i)],   (JᵀWJ) ξ = −JᵀWυ   (eqs 9-11)
-// coarse to fine over the pyramid, keeping the best iterate per level. The
+// coarse to fine over the pyramid, keeping the best iterate per level.
+// Deviation (IMU modes): a rotation prior from the gyroscope adds
+// ½‖Log(R_priorᵀ R)‖²/σ² to f; far scenes leave rotation and lateral
+// translation nearly interchangeable, and the gyroscope tells them apart. The
 // covariance of the result is (JᵀWJ)⁻¹ at the last finest-level iteration
 // (paper §6.3), in the current camera frame's tangent space.
 #include <Eigen/Core>
@@ -49,12 +52,21 @@ struct AlignmentResult {
   double ms = 0.0;
 };
 
+/// A prior on the rotation of T_nr from the gyroscope, added to the normal
+/// equations as ½‖Log(R_nrᵀ R)‖²/σ² on the scale where one edge residual has
+/// a standard deviation of 1 level-0 pixel (so 4^−l times that on level l).
+struct RotationPrior {
+  geometry::SO3 R_nr;
+  double sigma_rad = 0.0;
+};
+
 /// Aligns the reference points (per level, keyframe camera frame) to the
 /// current pyramid, starting from T_nr_init, from level `coarsest` (−1: the
 /// coarsest available) down to level `finest`. The self check and covariance
 /// are evaluated at `finest`, the distance threshold scaled to its pixels (2^−finest).
 AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& reference_points,
                            const vision::EdgePyramid& current, const geometry::SE3& T_nr_init,
-                           const AlignmentOptions& options, int coarsest = -1, int finest = 0);
+                           const AlignmentOptions& options, int coarsest = -1, int finest = 0,
+                           const RotationPrior* rotation_prior = nullptr);
 
 }  // namespace edgevio::tracking

@@ -7,6 +7,10 @@ namespace edgevio::tracking {
 using geometry::SE3;
 using geometry::SO3;
 
+namespace {
+constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+}  // namespace
+
 std::string TrackingOptions::validate() const {
   if (!(keyframe_edge_ratio > 1.0)) return "keyframe_edge_ratio: must be > 1";
   if (keyframe_min_points < 0) return "keyframe_min_points: must be >= 0";
@@ -15,6 +19,8 @@ std::string TrackingOptions::validate() const {
     return "translation_prior: previous or constant_velocity";
   if (lost_after_failures < 1) return "lost_after_failures: at least 1";
   if (!(gyro_check_deg > 0)) return "gyro_check_deg: must be > 0";
+  if (!(rotation_prior_deg >= 0)) return "rotation_prior_deg: must be >= 0 (0: off)";
+  if (!(rotation_prior_fraction >= 0)) return "rotation_prior_fraction: must be >= 0";
   if (gyro_check_realign_levels < 1) return "gyro_check_realign_levels: at least 1";
   if (!(static_init_window_s > 0)) return "static_init_window_s: must be > 0";
   if (!(static_accel_std_max > 0 && static_gyro_std_max > 0)) return "static_*_std_max: must be > 0";
@@ -42,11 +48,20 @@ void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const LazyImage& rig
 }
 
 AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, const SE3& T_w_b_pred,
-                                             PredictionReliability reliable, FrameTrack* checks) const {
+                                             PredictionReliability reliable, const GyroSince& gyro_since,
+                                             FrameTrack* checks) const {
   const SE3 T_nr_init = (T_w_b_pred * T_b_c_).inverse() * keyframe_->T_w_c;
-  AlignmentResult r = alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_);
+  std::optional<RotationPrior> rotation_prior;
+  if (gyro_since && tracking_.rotation_prior_deg > 0)
+    if (const auto R_br_bn = gyro_since(keyframe_->data->t_ns)) {
+      const SO3 R_nr = T_b_c_.so3().inverse() * R_br_bn->inverse() * T_b_c_.so3();
+      const double s0 = tracking_.rotation_prior_deg * kRadPerDeg, s1 = tracking_.rotation_prior_fraction * geometry::angle(R_nr);
+      rotation_prior = RotationPrior{R_nr, std::sqrt(s0 * s0 + s1 * s1)};
+    }
+  const RotationPrior* prior = rotation_prior ? &*rotation_prior : nullptr;
+  AlignmentResult r = alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_, -1, 0, prior);
   const auto realignFine = [&] {
-    return alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1);
+    return alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1, 0, prior);
   };
   // Gyro check: the gyroscope's rotation over one frame is accurate to a
   // fraction of a degree; an alignment far from it has converged to a wrong
@@ -118,7 +133,8 @@ std::optional<std::int64_t> EdgeTracker::keyframeTime() const {
   return keyframe_->data->t_ns;
 }
 
-FrameTrack EdgeTracker::track(PreparedFrame frame, const SE3& T_w_b_pred, PredictionReliability reliable) {
+FrameTrack EdgeTracker::track(PreparedFrame frame, const SE3& T_w_b_pred, PredictionReliability reliable,
+                              const GyroSince& gyro_since) {
   FrameTrack out;
   out.t_ns = frame.t_ns;
   last_t_ns_ = frame.t_ns;
@@ -138,7 +154,7 @@ FrameTrack EdgeTracker::track(PreparedFrame frame, const SE3& T_w_b_pred, Predic
   out.aligned = true;
   out.reference_points = static_cast<int>(keyframe_->data->depth.points.empty() ? 0 : keyframe_->data->depth.points[0].size());
   out.reference_t_ns = keyframe_->data->t_ns;
-  out.alignment = alignToKeyframe(pyr, T_w_b_pred, reliable, &out);
+  out.alignment = alignToKeyframe(pyr, T_w_b_pred, reliable, gyro_since, &out);
   if (!out.alignment.self_check_passed && previous_) {
     // Motion since the keyframe was too large: the previous frame, tracked
     // and closer to this one, becomes the keyframe, and alignment is retried.
@@ -150,7 +166,7 @@ FrameTrack EdgeTracker::track(PreparedFrame frame, const SE3& T_w_b_pred, Predic
     out.bm_ms += promoted.bm_ms;
     out.reference_points = static_cast<int>(keyframe_->data->depth.points[0].size());
     const double first_ms = out.alignment.ms;
-    out.alignment = alignToKeyframe(pyr, T_w_b_pred, reliable, &out);
+    out.alignment = alignToKeyframe(pyr, T_w_b_pred, reliable, gyro_since, &out);
     out.alignment.ms += first_ms;
   }
   out.self_check_passed = out.alignment.self_check_passed;

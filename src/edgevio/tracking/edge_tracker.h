@@ -92,6 +92,9 @@ enum class PredictionReliability { kNone, kRotation, kPose };
 
 class EdgeTracker {
  public:
+  /// The gyroscope's body rotation from a time [ns] to the frame being tracked.
+  using GyroSince = std::function<std::optional<geometry::SO3>(std::int64_t)>;
+
   EdgeTracker(const camera::StereoRectifier& rectifier, const vision::VisionOptions& vision,
               const AlignmentOptions& alignment, const TrackingOptions& tracking);
 
@@ -105,7 +108,10 @@ class EdgeTracker {
   /// initial guess of the alignment, the pose of a first frame, and the
   /// frame's pose when the alignment fails. `reliable` says which checks
   /// against the prediction apply.
-  FrameTrack track(PreparedFrame frame, const geometry::SE3& T_w_b_pred, PredictionReliability reliable);
+  /// `gyro_since(t_ref)`: the body rotation R_bref_bcur from time t_ref to this
+  /// frame by the gyroscope alone (empty: none); the alignment's rotation prior.
+  FrameTrack track(PreparedFrame frame, const geometry::SE3& T_w_b_pred, PredictionReliability reliable,
+                   const GyroSince& gyro_since = {});
 
   /// Replaces the poses of the keyframe and of the last frame with better
   /// estimates (the window's), looked up by timestamp.
@@ -130,7 +136,7 @@ class EdgeTracker {
   /// Aligns `pyr` to the current keyframe from `T_w_b_pred`, with the gyro and
   /// translation checks; sets the flags of the checks that failed in `checks`.
   AlignmentResult alignToKeyframe(const vision::EdgePyramid& pyr, const geometry::SE3& T_w_b_pred,
-                                  PredictionReliability reliable, FrameTrack* checks) const;
+                                  PredictionReliability reliable, const GyroSince& gyro_since, FrameTrack* checks) const;
   /// The previous frame, kept so that it can become a keyframe when the current
   /// frame fails to align to the old one (its pose is already known).
   struct Previous {
