@@ -1,5 +1,7 @@
 #include "edgevio/tracking/edge_tracker.h"
 
+#include <cmath>
+
 #include "edgevio/vision/edge_pyramid.h"
 
 namespace edgevio::tracking {
