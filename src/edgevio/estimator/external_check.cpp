@@ -26,7 +26,7 @@ ExternalCheckResult externalCheck(const SE3& T_nr_measured, const imu::NavState&
   const SE3 T_nr_pred = C_n.inverse() * C_r;
   const SE3 E = T_nr_pred.inverse() * T_nr_measured;
   ExternalCheckResult res;
-  res.rotation_deg = geometry::angle(E.so3()) * 180.0 / 3.14159265358979323846;
+  res.rotation_deg = geometry::angle(E.so3()) * 180.0 / kPi;
   res.translation_m = (T_nr_measured.translation() - T_nr_pred.translation()).norm();
   res.accepted = res.rotation_deg <= max_rotation_deg && res.translation_m <= max_translation_m;
   return res;

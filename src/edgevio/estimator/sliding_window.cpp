@@ -56,8 +56,6 @@ void InertialLink::repropagate(const Vec3& b_a, const Vec3& b_g) {
 
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-
 /// Normal equations H δ = −g over a set of states (local indices via `slot`).
 struct Normal {
   MatrixXd H;

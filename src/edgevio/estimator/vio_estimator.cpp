@@ -10,8 +10,6 @@ namespace edgevio::estimator {
 using geometry::SE3;
 
 namespace {
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }

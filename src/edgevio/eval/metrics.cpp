@@ -13,7 +13,6 @@ namespace edgevio::eval {
 using geometry::SE3;
 
 namespace {
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string spanText(const io::Trajectory& t) {

@@ -10,10 +10,6 @@ namespace edgevio::loop {
 
 using geometry::SE3;
 
-namespace {
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-}
-
 std::string LoopOptions::validate() const {
   if (!(max_distance_depth_ratio > 0)) return "max_distance_depth_ratio: must be > 0";
   if (!(max_view_angle_deg > 0 && max_view_angle_deg <= 180)) return "max_view_angle_deg: in (0, 180]";

@@ -13,7 +13,6 @@ using geometry::SO3;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kGravity = 9.81;
 
 /// 0 → 1 with zero first and second derivatives at both ends (quintic smoothstep).

@@ -9,10 +9,6 @@ namespace edgevio::tracking {
 using geometry::SE3;
 using geometry::SO3;
 
-namespace {
-constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
-}  // namespace
-
 std::string TrackingOptions::validate() const {
   if (!(keyframe_edge_ratio > 1.0)) return "keyframe_edge_ratio: must be > 1";
   if (keyframe_min_points < 0) return "keyframe_min_points: must be >= 0";
@@ -57,7 +53,7 @@ AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, con
   if (gyro_since && tracking_.rotation_prior_deg > 0)
     if (const auto R_br_bn = gyro_since(keyframe_->data->t_ns)) {
       const SO3 R_nr = T_b_c_.so3().inverse() * R_br_bn->inverse() * T_b_c_.so3();
-      const double s0 = tracking_.rotation_prior_deg * kRadPerDeg, s1 = tracking_.rotation_prior_fraction * geometry::angle(R_nr);
+      const double s0 = tracking_.rotation_prior_deg * kDegToRad, s1 = tracking_.rotation_prior_fraction * geometry::angle(R_nr);
       rotation_prior = RotationPrior{R_nr, std::sqrt(s0 * s0 + s1 * s1)};
     }
   const RotationPrior* prior = rotation_prior ? &*rotation_prior : nullptr;
@@ -70,7 +66,7 @@ AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, con
   // minimum (repetitive texture), so re-align from the prediction on the fine
   // levels only, where the basin cannot reach the wrong one.
   const auto rotationError = [&](const SE3& T_nr) {
-    return geometry::angle(T_nr.so3().inverse() * T_nr_init.so3()) * 180.0 / 3.14159265358979323846;
+    return geometry::angle(T_nr.so3().inverse() * T_nr_init.so3()) * 180.0 / kPi;
   };
   if (reliable != PredictionReliability::kNone && rotationError(r.T_nr) > tracking_.gyro_check_deg) {
     checks->gyro_check_failed = true;
