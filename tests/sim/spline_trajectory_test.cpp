@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "edgevio/io/calibration_io.h"
@@ -95,6 +96,76 @@ TEST(Scenarios, ThrowHasFreeFlight) {
     if ((k.a_w + Vec3(0, 0, 9.81)).norm() < 1.0) ++free_fall;
   }
   EXPECT_GT(free_fall, 60);  // several flights of 0.7 s, sampled at 100 Hz
+}
+
+// removePositionSteps: a scenario is smooth (accelerations of several g, but
+// continuous), so the median of an increment's ten neighbours is its own
+// velocity up to jerk·(5Δt)² ≈ 1e-3 m/s, far inside 50 m/s²·Δt = 0.25 m/s.
+TEST(RemovePositionSteps, KeepsEverySmoothScenarioAsItIs) {
+  const camera::StereoRig rig = io::eurocDefaultRig();
+  for (const std::string& name : scenarioNames()) {
+    io::Trajectory samples = scenarioSamples(name, 20.0, 1.0, rig.T_b_c[0]);
+    const io::Trajectory original = samples;
+    EXPECT_EQ(removePositionSteps(samples, 50.0, 1.0), 0) << name;
+    for (std::size_t i = 0; i < samples.size(); ++i)
+      ASSERT_EQ(samples[i].T_w_b.translation(), original[i].T_w_b.translation()) << name << " sample " << i;
+  }
+}
+
+// A 13 cm one-sample spike (as at 45 s in EuRoC MH_04's ground truth) and a
+// 2 cm step (as at 71.3 s) on a smooth path. The spike is two replaced
+// increments and its peak is never averaged in, so it leaves no trace; the
+// step is one replaced increment, and its offset returns as the boxcar average
+// of a step: a ramp from 0 to s over spread_s, i.e. at most |s|·Δt/spread_s
+// per sample. Elsewhere the only error is the median's: the spike's other
+// increment is one of the ten neighbours and shifts the median by up to one
+// neighbour, |a|·Δt in velocity, so |a|·Δt² in position per replaced increment;
+// figure8 has |a| < 2 m/s², so < 1e-4 m for the three.
+TEST(RemovePositionSteps, RemovesASpikeAndTurnsAStepIntoARamp) {
+  const camera::StereoRig rig = io::eurocDefaultRig();
+  const io::Trajectory smooth = scenarioSamples("figure8", 20.0, 1.0, rig.T_b_c[0]);
+  const auto at = [&](double seconds) {
+    const std::int64_t t = smooth.front().t_ns + static_cast<std::int64_t>(seconds * 1e9);
+    return static_cast<std::size_t>(std::lower_bound(smooth.begin(), smooth.end(), t,
+                                                     [](const io::TrajectorySample& s, std::int64_t v) { return s.t_ns < v; }) -
+                                    smooth.begin());
+  };
+  const std::size_t spike = at(5.0), step = at(12.0);
+  const Vec3 spike_offset(0.13, -0.02, 0.05);
+  const Vec3 step_offset = Vec3(1.0, -1.0, 0.5).normalized() * 0.02;
+  io::Trajectory glitched = smooth;
+  const auto shift = [](io::TrajectorySample& s, const Vec3& d) { s.T_w_b = SE3(s.T_w_b.so3(), s.T_w_b.translation() + d); };
+  shift(glitched[spike], spike_offset);
+  for (std::size_t i = step; i < glitched.size(); ++i) shift(glitched[i], step_offset);
+
+  const double spread_s = 1.0;
+  EXPECT_EQ(removePositionSteps(glitched, 50.0, spread_s), 3);
+  const double dt = 1e-9 * static_cast<double>(smooth[1].t_ns - smooth[0].t_ns);
+  const double eps = 1e-4;
+  const std::size_t ramp_begin = at(12.0 - 0.5 * spread_s) - 1, ramp_end = at(12.0 + 0.5 * spread_s) + 1;
+  Vec3 previous = Vec3::Zero();
+  for (std::size_t i = 0; i < glitched.size(); ++i) {
+    const Vec3 offset = glitched[i].T_w_b.translation() - smooth[i].T_w_b.translation();
+    EXPECT_EQ(glitched[i].T_w_b.so3().matrix(), smooth[i].T_w_b.so3().matrix());
+    if (i < ramp_begin) {
+      ASSERT_LT(offset.norm(), eps) << "sample " << i << " (spike at " << spike << ")";
+    } else if (i > ramp_end) {
+      ASSERT_LT((offset - step_offset).norm(), eps) << "sample " << i;
+    } else {
+      // On the ramp: along the step, between 0 and s, growing by at most |s|·Δt/spread.
+      const double along = offset.dot(step_offset.normalized());
+      ASSERT_LT((offset - along * step_offset.normalized()).norm(), eps) << "sample " << i;
+      ASSERT_GT(along, -eps);
+      ASSERT_LT(along, step_offset.norm() + eps);
+      ASSERT_LT((offset - previous).norm(), step_offset.norm() * dt / spread_s * 1.01 + eps) << "sample " << i;
+    }
+    previous = offset;
+  }
+
+  io::Trajectory untouched = smooth;
+  shift(untouched[spike], spike_offset);
+  EXPECT_EQ(removePositionSteps(untouched, 0.0, spread_s), 0);  // 0: off
+  EXPECT_EQ(untouched[spike].T_w_b.translation(), smooth[spike].T_w_b.translation() + spike_offset);
 }
 
 }  // namespace

@@ -34,6 +34,10 @@ int simulate(const SimulateArgs& a, std::ostream& out, std::ostream& err) {
         sim::simulate(r, config.sim, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
     out << "wrote " << a.out << "/mav0: " << s.frames << " stereo frames (" << s.dropped_cam1
         << " cam1 frames dropped), " << s.imu_samples << " IMU samples, " << s.duration_s << " s\n";
+    if (s.position_steps_removed > 0)
+      out << "trajectory: " << s.position_steps_removed
+          << " position steps removed (tracker glitches; sim.trajectory_max_accel_mps2 = " << config.sim.trajectory_max_accel_mps2
+          << ", 0 keeps the file as is)\n";
     out << "time: " << s.wall_s << " s wall: setup " << s.setup_s << " s, then "
         << static_cast<double>(s.frames) / std::max(s.wall_s - s.setup_s, 1e-9) << " stereo frames/s (per-camera totals: ray casting "
         << s.render_s << " s, image writing " << s.write_s << " s)\n";

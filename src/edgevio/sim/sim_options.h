@@ -10,6 +10,8 @@ namespace edgevio::sim {
 struct SimOptions {
   double knot_dt_s = 0.05;               ///< spline control-point spacing; smooths mocap noise [s]
   double max_trajectory_gap_s = 0.1;     ///< longer gaps in a trajectory file are errors [s]
+  double trajectory_max_accel_mps2 = 50.0;  ///< a file's position step: a velocity this far·Δt from its neighbours' [m/s²]
+  double trajectory_step_spread_s = 1.0;    ///< a removed step is restored as a ramp this long [s]
   double static_start_s = 1.0;           ///< standstill at the start of every scenario [s]
   double scenario_duration_s = 30.0;     ///< scenario length when --duration is not given [s]
   SceneOptions scene;
@@ -31,6 +33,9 @@ struct SimOptions {
   void visit(Visitor& v) {
     v("knot_dt_s", knot_dt_s, "s", "spline control-point spacing (smooths motion-capture noise)");
     v("max_trajectory_gap_s", max_trajectory_gap_s, "s", "a longer gap in a trajectory file is an error");
+    v("trajectory_max_accel_mps2", trajectory_max_accel_mps2, "m/s^2",
+      "a trajectory file's position step (tracker glitch) is removed where a sample's velocity differs from its neighbours' median by more than this x dt (0: keep the file as is)");
+    v("trajectory_step_spread_s", trajectory_step_spread_s, "s", "a removed step's offset comes back as a ramp this long, so the motion follows the file in the long run");
     v("static_start_s", static_start_s, "s", "standstill at the start of every built-in scenario");
     v("scenario_duration_s", scenario_duration_s, "s", "scenario length when --duration is not given");
     v("room_margin_m", scene.room_margin_m, "m", "free space between the path's bounding box and the walls");

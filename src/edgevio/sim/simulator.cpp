@@ -27,6 +27,8 @@ using geometry::SE3;
 std::string SimOptions::validate() const {
   if (!(knot_dt_s >= 0.005 && knot_dt_s <= 0.5)) return "knot_dt_s: must be in [0.005, 0.5]";
   if (!(max_trajectory_gap_s > 0)) return "max_trajectory_gap_s: must be > 0";
+  if (!(trajectory_max_accel_mps2 >= 0)) return "trajectory_max_accel_mps2: must be >= 0 (0: off)";
+  if (!(trajectory_step_spread_s > 0)) return "trajectory_step_spread_s: must be > 0";
   if (!(static_start_s >= 0)) return "static_start_s: must be >= 0";
   if (!(scenario_duration_s > 0)) return "scenario_duration_s: must be > 0";
   if (!(scene.room_margin_m > 0 && scene.floor_below_path_m > 0 && scene.ceiling_above_path_m > 0))
@@ -121,6 +123,7 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   // 1. The motion.
   io::Trajectory samples;
   std::string source;
+  int position_steps = 0;
   std::int64_t begin_ns = 0, end_ns = 0;
   const double margin_s = 4 * options.knot_dt_s;  // spline support beyond the span
   if (!req.scenario.empty()) {
@@ -133,6 +136,7 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   } else {
     samples = io::readTrajectory(req.trajectory_file);
     source = req.trajectory_file;
+    position_steps = removePositionSteps(samples, options.trajectory_max_accel_mps2, options.trajectory_step_spread_s);
     begin_ns = samples.front().t_ns + static_cast<std::int64_t>(std::llround(req.start_s * 1e9));
     end_ns = std::isnan(req.duration_s) ? samples.back().t_ns
                                         : begin_ns + static_cast<std::int64_t>(std::llround(req.duration_s * 1e9));
@@ -277,6 +281,7 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   }
   writeSimulationYaml((fs::path(req.out_dir) / "simulation.yaml").string(), req, options);
   summary.imu_samples = imu.samples.size();
+  summary.position_steps_removed = position_steps;
   summary.duration_s = static_cast<double>(end_ns - begin_ns) * 1e-9;
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return summary;

@@ -34,6 +34,7 @@ struct SimSummary {
   std::size_t frames = 0;         ///< stereo instants rendered
   std::size_t dropped_cam1 = 0;
   std::size_t imu_samples = 0;
+  int position_steps_removed = 0;  ///< removePositionSteps on the trajectory file (sim.trajectory_max_accel_mps2)
   double duration_s = 0.0;
   double wall_s = 0.0;
   double setup_s = 0.0;           ///< motion, scene (textures), IMU, ray tables: before the first frame

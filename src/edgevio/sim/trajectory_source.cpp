@@ -111,6 +111,74 @@ io::Trajectory scenarioSamples(const std::string& name, double duration_s, doubl
   return out;
 }
 
+int removePositionSteps(io::Trajectory& samples, double max_accel_mps2, double spread_s) {
+  constexpr std::size_t kSide = 5;  // neighbours on each side of an increment
+  const std::size_t n = samples.size();
+  if (max_accel_mps2 <= 0.0 || n < 2 * kSide + 2) return 0;
+  const auto dt = [&](std::size_t i) { return static_cast<double>(samples[i].t_ns - samples[i - 1].t_ns) * 1e-9; };
+  // Velocity of increment i (i = 1..n−1); equal timestamps carry no velocity.
+  std::vector<Vec3> vel(n, Vec3::Zero());
+  for (std::size_t i = 1; i < n; ++i)
+    if (dt(i) > 0.0) vel[i] = (samples[i].T_w_b.translation() - samples[i - 1].T_w_b.translation()) / dt(i);
+
+  std::vector<Vec3> fixed = vel;
+  std::vector<bool> stepped(n, false);  // sample i is the far end of a replaced increment
+  int replaced = 0;
+  // Componentwise medians of the kSide increments before i, after i, and of both.
+  const auto median = [&](std::size_t first, std::size_t last, std::size_t skip) {
+    Vec3 m;
+    std::vector<double> window;
+    for (int axis = 0; axis < 3; ++axis) {
+      window.clear();
+      for (std::size_t j = first; j <= last; ++j)
+        if (j != skip) window.push_back(vel[j][axis]);
+      std::sort(window.begin(), window.end());
+      const std::size_t h = window.size() / 2;
+      m[axis] = window.size() % 2 == 1 ? window[h] : 0.5 * (window[h - 1] + window[h]);
+    }
+    return m;
+  };
+  for (std::size_t i = 1 + kSide; i + kSide < n; ++i) {
+    if (!(dt(i) > 0.0)) continue;
+    const double limit = max_accel_mps2 * dt(i);
+    const Vec3 both = median(i - kSide, i + kSide, i);
+    // A step disagrees with the motion on both sides; a kink (a velocity jump,
+    // e.g. a scenario's throw) agrees with one of them and is kept.
+    if ((vel[i] - both).norm() > limit && (vel[i] - median(i - kSide, i - 1, n)).norm() > limit &&
+        (vel[i] - median(i + 1, i + kSide, n)).norm() > limit) {
+      fixed[i] = both;
+      stepped[i] = true;
+      ++replaced;
+    }
+  }
+  if (replaced == 0) return 0;
+
+  // Re-summed positions, and the offset of the file from them. The offset is
+  // not observed at a step's far end: that keeps a spike's peak (both of its
+  // increments replaced) out of the average altogether.
+  std::vector<Vec3> summed(n);
+  summed[0] = samples[0].T_w_b.translation();
+  for (std::size_t i = 1; i < n; ++i) summed[i] = summed[i - 1] + fixed[i] * dt(i);
+  std::vector<Vec3> prefix(n + 1, Vec3::Zero());
+  std::vector<int> count(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool observed = !stepped[i];
+    prefix[i + 1] = prefix[i] + (observed ? Vec3(samples[i].T_w_b.translation() - summed[i]) : Vec3::Zero());
+    count[i + 1] = count[i] + (observed ? 1 : 0);
+  }
+  // Moving average over ±spread_s/2 (fewer samples near the ends).
+  const auto half_ns = static_cast<std::int64_t>(std::llround(0.5 * spread_s * 1e9));
+  std::size_t lo = 0, hi = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    while (samples[lo].t_ns < samples[i].t_ns - half_ns) ++lo;
+    while (hi < n && samples[hi].t_ns <= samples[i].t_ns + half_ns) ++hi;
+    const int k = count[hi] - count[lo];
+    const Vec3 mean = k > 0 ? Vec3((prefix[hi] - prefix[lo]) / k) : Vec3::Zero();
+    samples[i].T_w_b = SE3(samples[i].T_w_b.so3(), summed[i] + mean);
+  }
+  return replaced;
+}
+
 SplineTrajectory fitSpline(const io::Trajectory& samples, std::int64_t begin_ns, std::int64_t end_ns,
                            double knot_dt_s, double max_gap_s, const std::string& source) {
   const auto seconds = [](std::int64_t t) {

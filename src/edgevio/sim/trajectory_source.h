@@ -30,6 +30,25 @@ io::Trajectory scenarioSamples(const std::string& name, double duration_s, doubl
 /// The scenarios' time origin (arbitrary; a plausible Unix time in ns).
 constexpr std::int64_t kScenarioStartNs = 1600000000000000000LL;
 
+/// Removes position steps from a recorded trajectory. Motion-capture and
+/// laser-tracker ground truth holds steps the body never made: the EuRoC
+/// machine-hall files have 30 (MH_04) and 62 (MH_03) of 1.3-130 mm (median
+/// 4 mm), where the estimate behind the file was pulled to a new tracker fix;
+/// a single-sample spike is a step out and one back. Images rendered along them disagree with
+/// the replayed real IMU by ~0.1 m/s for a tenth of a second.
+///
+/// A sample-to-sample velocity (p_i − p_{i−1})/Δt_i further than
+/// `max_accel_mps2`·Δt_i from the median of its ten neighbours (five each side;
+/// for smooth motion that median is the velocity itself up to jerk·(5Δt)²), and
+/// as far from the median of each side alone (so that a kink, a velocity jump
+/// such as a scenario's throw, is kept), is
+/// replaced by that median. Positions are re-summed from the increments, and
+/// the offset r = p_file − p_summed is added back as its moving average over
+/// `spread_s`: a step of s becomes a ramp of slope s/spread_s and the result
+/// follows the file in the long run. Orientations are kept.
+/// Returns the number of increments replaced; `max_accel_mps2` = 0: none.
+int removePositionSteps(io::Trajectory& samples, double max_accel_mps2, double spread_s);
+
 /// Fits a spline with knot spacing `knot_dt_s` through the samples over
 /// [begin_ns, end_ns]. Throws InputError (naming `source`) when the samples do
 /// not cover the span or have a gap longer than `max_gap_s` inside it.
