@@ -1,5 +1,6 @@
 #include "edgevio/sim/simulator.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -104,6 +105,20 @@ void writeSimulationYaml(const std::string& path, const SimRequest& r, SimOption
   o.visit(w);
 }
 
+/// sim.knot_dt_s, or the samples' median spacing where that is wider: denser
+/// knots would only repeat the linear interpolation between samples. A
+/// B-spline whose control points are samples of a motion p keeps
+/// (4 + 2 cos 2πfΔ)/6 of its amplitude at frequency f (Δ: knot spacing), so
+/// narrow knots matter for a replayed real IMU, which measured all of it.
+double knotSpacing(const io::Trajectory& samples, double knot_dt_s) {
+  if (samples.size() < 2) return knot_dt_s;
+  std::vector<std::int64_t> gaps;
+  gaps.reserve(samples.size() - 1);
+  for (std::size_t i = 1; i < samples.size(); ++i) gaps.push_back(samples[i].t_ns - samples[i - 1].t_ns);
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
+  return std::max(knot_dt_s, 1e-9 * static_cast<double>(gaps[gaps.size() / 2]));
+}
+
 }  // namespace
 
 SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimProgress& progress) {
@@ -149,7 +164,8 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   if (static_cast<double>(end_ns - begin_ns) * 1e-9 < kMinDuration)
     throw InputError(source, 0, "too short: the requested span is " + seconds(end_ns - begin_ns) + " s, at least " +
                                     std::to_string(kMinDuration) + " s are needed");
-  const SplineTrajectory spline = fitSpline(samples, begin_ns, end_ns, options.knot_dt_s, options.max_trajectory_gap_s, source);
+  const double knot_dt_s = knotSpacing(samples, options.knot_dt_s);
+  const SplineTrajectory spline = fitSpline(samples, begin_ns, end_ns, knot_dt_s, options.max_trajectory_gap_s, source);
 
   // 2. The world around it.
   std::vector<Vec3> path;
@@ -282,6 +298,7 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   writeSimulationYaml((fs::path(req.out_dir) / "simulation.yaml").string(), req, options);
   summary.imu_samples = imu.samples.size();
   summary.position_steps_removed = position_steps;
+  summary.knot_dt_s = knot_dt_s;
   summary.duration_s = static_cast<double>(end_ns - begin_ns) * 1e-9;
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return summary;

@@ -36,6 +36,7 @@ struct SimSummary {
   std::size_t imu_samples = 0;
   int position_steps_removed = 0;  ///< removePositionSteps on the trajectory file (sim.trajectory_max_accel_mps2)
   double duration_s = 0.0;
+  double knot_dt_s = 0.0;          ///< spline knot spacing used: sim.knot_dt_s or the file's sample spacing [s]
   double wall_s = 0.0;
   double setup_s = 0.0;           ///< motion, scene (textures), IMU, ray tables: before the first frame
   double render_s = 0.0;          ///< time spent ray casting
