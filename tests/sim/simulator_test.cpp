@@ -40,6 +40,16 @@ SimRequest shortScenario(const std::string& out) {
   return r;
 }
 
+/// A span of a real EuRoC recording: its ground truth, its IMU log replayed.
+SimRequest replayRequest(const std::string& euroc_dir, const std::string& out, double start_s, double duration_s) {
+  SimRequest r;
+  r.out_dir = out;
+  r.trajectory_file = euroc_dir + "/groundtruth.csv";
+  r.imu = euroc_dir + "/imu0.csv";
+  r.start_s = start_s;
+  r.duration_s = duration_s;
+  return r;
+}
 
 TEST(Simulator, WritesAnAslFolderTheReaderAccepts) {
   TempDir dir;
@@ -147,12 +157,7 @@ TEST(Simulator, BadInputIsExplained) {
 TEST(Simulator, ReplaysARealImuLogAndKeepsItsBiases) {
   EDGEVIO_REQUIRE_SHARED_DATA("trajectories/euroc/V1_02_medium");
   TempDir dir;
-  SimRequest r;
-  r.out_dir = dir.path();
-  r.trajectory_file = data_path + "/groundtruth.csv";
-  r.imu = data_path + "/imu0.csv";
-  r.start_s = 10.0;
-  r.duration_s = 0.5;
+  const SimRequest r = replayRequest(data_path, dir.path(), 10.0, 0.5);
   simulate(r, fastOptions());
   const auto real = io::readImuCsv(r.imu, 1.0, nullptr);
   const auto written = io::readImuCsv(dir.path() + "/mav0/imu0/data.csv", 1.0, nullptr);
@@ -215,13 +220,7 @@ TEST(Simulator, RendersTheMachineHallWithoutItsTrackerGlitch) {
   EDGEVIO_REQUIRE_SHARED_DATA("trajectories/euroc/MH_04_difficult");
   const auto maxAccelExcess = [&](const SimOptions& options) {
     TempDir dir;
-    SimRequest r;
-    r.out_dir = dir.path();
-    r.trajectory_file = data_path + "/groundtruth.csv";
-    r.imu = data_path + "/imu0.csv";
-    r.start_s = 44.8;
-    r.duration_s = 0.5;
-    const SimSummary summary = simulate(r, options);
+    const SimSummary summary = simulate(replayRequest(data_path, dir.path(), 44.8, 0.5), options);
     EXPECT_EQ(summary.position_steps_removed > 0, options.trajectory_max_accel_mps2 > 0);
     const auto imu = io::readImuCsv(dir.path() + "/mav0/imu0/data.csv", 1.0, nullptr);
     const io::Trajectory gt = io::readTrajectory(dir.path() + "/mav0/state_groundtruth_estimate0/data.csv");
