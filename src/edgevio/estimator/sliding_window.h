@@ -78,6 +78,8 @@ struct SolverOptions {
 
 struct SolveSummary {
   int iterations = 0;
+  /// ½ Σ rᵀWr over the links plus the prior's ½δᵀHδ + bᵀδ (no constant term:
+  /// negative values are normal; only differences within one solve mean anything).
   double initial_cost = 0.0, final_cost = 0.0;
 };
 
