@@ -50,6 +50,8 @@ EstimatorOptions testOptions() {
   EstimatorOptions o;
   o.visual_covariance_scale = 1.0;  // the links below carry their true covariance
   o.imu_noise_inflation = 1.0;      // and the IMU its true densities
+  o.gyro_bias_walk_inflation = 1.0;
+  o.accel_bias_walk_inflation = 1.0;
   return o;
 }
 
@@ -131,6 +133,42 @@ TEST(VioEstimator, FollowsAggressiveMotionToTheAccuracyOfItsLinks) {
   EXPECT_GT(st.front, 0);
   EXPECT_GT(st.back, 0);
   EXPECT_TRUE(st.keyframes_survived);
+}
+
+TEST(VioEstimator, InflatesWhiteNoiseAndEachBiasWalkByItsOwnFactor) {
+  const Scenario sc("figure8");
+  EstimatorOptions o = testOptions();
+  o.imu_noise_inflation = 3.0;
+  o.gyro_bias_walk_inflation = 1.5;
+  o.accel_bias_walk_inflation = 7.0;
+  VioEstimator est(o, sc.rig.imu, sc.rig.T_b_c[0]);
+  const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL, t1 = t0 + 500000000;
+  est.initialize(t0, sc.truth(t0), false, false);
+  const auto pre = est.preintegrateTo(sc.imu.samples, t1);
+  ASSERT_TRUE(pre.has_value());
+  // A bias is a pure random walk, so its block of the covariance is the
+  // inflated density squared times the interval, whatever the motion.
+  const double T = pre->deltaT();
+  const camera::ImuNoise& n = sc.rig.imu;
+  const auto& P = pre->covariance();
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(P(imu::kBa + k, imu::kBa + k), std::pow(7.0 * n.accel_random_walk, 2) * T, 1e-12);
+    EXPECT_NEAR(P(imu::kBg + k, imu::kBg + k), std::pow(1.5 * n.gyro_random_walk, 2) * T, 1e-15);
+  }
+  // The white noise enters the motion blocks: the same covariance as
+  // preintegrating with the densities scaled by hand.
+  camera::ImuNoise scaled = n;
+  scaled.accel_noise_density *= 3.0;
+  scaled.gyro_noise_density *= 3.0;
+  scaled.accel_random_walk *= 7.0;
+  scaled.gyro_random_walk *= 1.5;
+  const auto ref = imu::preintegrate(sc.imu.samples, t0, t1, Vec3::Zero(), Vec3::Zero(), scaled);
+  ASSERT_TRUE(ref.has_value());
+  EXPECT_LE((P - ref->covariance()).norm(), 1e-12 * ref->covariance().norm());
+  // ... and differs from the uninflated one by about 3² in rotation.
+  const auto plain = imu::preintegrate(sc.imu.samples, t0, t1, Vec3::Zero(), Vec3::Zero(), n);
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_NEAR(P(imu::kR, imu::kR) / plain->covariance()(imu::kR, imu::kR), 9.0, 0.1);
 }
 
 TEST(VioEstimator, ExternalCheckDropsACorruptedLink) {

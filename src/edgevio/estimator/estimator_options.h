@@ -19,7 +19,9 @@ struct EstimatorOptions {
   double front_translation_m = 0.3;           ///< front marginalisation when ‖Δp‖/this + angle/front_rotation_deg < 1 [m]
   double front_rotation_deg = 10.0;           ///< (distance of the second-newest state to the keyframe) [deg]
   double visual_covariance_scale = 10.0;      ///< a tracking link's covariance is the alignment's (JᵀWJ)⁻¹ times this [-]
-  double imu_noise_inflation = 2.0;           ///< IMU noise densities from the calibration times this [-]
+  double imu_noise_inflation = 2.0;           ///< IMU white-noise densities from the calibration times this [-]
+  double gyro_bias_walk_inflation = 2.0;      ///< the gyroscope's bias random walk from the calibration times this [-]
+  double accel_bias_walk_inflation = 2.0;     ///< the accelerometer's bias random walk from the calibration times this [-]
   double max_imu_gap_s = 0.05;                ///< IMU readings further apart than this break the inertial chain (restart) [s]
   double repropagate_accel_bias = 0.05;       ///< re-integrate a link when its linearisation b_a is this far off [m/s²]
   double repropagate_gyro_bias = 0.005;       ///< ... or its b_g [rad/s]
@@ -47,7 +49,9 @@ struct EstimatorOptions {
     v("front_translation_m", front_translation_m, "m", "front marginalisation when |dp|/this + angle/front_rotation_deg < 1 (second-newest vs keyframe)");
     v("front_rotation_deg", front_rotation_deg, "deg", "rotation scale of that distance");
     v("visual_covariance_scale", visual_covariance_scale, "-", "tracking-link covariance = alignment (J'WJ)^-1 times this");
-    v("imu_noise_inflation", imu_noise_inflation, "-", "IMU noise densities from the calibration are multiplied by this");
+    v("imu_noise_inflation", imu_noise_inflation, "-", "IMU white-noise densities from the calibration are multiplied by this");
+    v("gyro_bias_walk_inflation", gyro_bias_walk_inflation, "-", "the gyroscope's bias random walk from the calibration is multiplied by this");
+    v("accel_bias_walk_inflation", accel_bias_walk_inflation, "-", "the accelerometer's bias random walk from the calibration is multiplied by this");
     v("max_imu_gap_s", max_imu_gap_s, "s", "IMU readings further apart than this break the inertial chain (the estimator restarts)");
     v("repropagate_accel_bias", repropagate_accel_bias, "m/s^2", "re-integrate an inertial link when its linearisation b_a is this far off");
     v("repropagate_gyro_bias", repropagate_gyro_bias, "rad/s", "... or its b_g");

@@ -25,6 +25,7 @@ std::string EstimatorOptions::validate() const {
   if (!(front_translation_m > 0 && front_rotation_deg > 0)) return "front_*: must be > 0";
   if (!(visual_covariance_scale > 0)) return "visual_covariance_scale: must be > 0";
   if (!(imu_noise_inflation > 0)) return "imu_noise_inflation: must be > 0";
+  if (!(gyro_bias_walk_inflation > 0 && accel_bias_walk_inflation > 0)) return "*_bias_walk_inflation: must be > 0";
   if (!(max_imu_gap_s > 0)) return "max_imu_gap_s: must be > 0";
   if (!(repropagate_accel_bias > 0 && repropagate_gyro_bias > 0)) return "repropagate_*: must be > 0";
   if (!(init_velocity_sigma > 0 && init_accel_bias_sigma > 0 && init_gyro_bias_sigma > 0 && init_tilt_sigma_deg > 0))
@@ -35,6 +36,10 @@ std::string EstimatorOptions::validate() const {
 
 VioEstimator::VioEstimator(const EstimatorOptions& options, const camera::ImuNoise& noise, const SE3& T_b_c, bool inertial)
     : options_(options), noise_(noise), inertial_(inertial) {
+  noise_.accel_noise_density *= options.imu_noise_inflation;
+  noise_.gyro_noise_density *= options.imu_noise_inflation;
+  noise_.accel_random_walk *= options.accel_bias_walk_inflation;
+  noise_.gyro_random_walk *= options.gyro_bias_walk_inflation;
   window_.T_b_c = T_b_c;
 }
 
@@ -87,7 +92,7 @@ std::optional<imu::NavState> VioEstimator::stateAt(std::int64_t t_ns) const {
 
 std::optional<imu::Preintegration> VioEstimator::preintegrateTo(const std::vector<io::ImuSample>& imu, std::int64_t t_ns) const {
   const imu::NavState& x = newest();
-  return imu::preintegrate(imu, newestTime(), t_ns, x.b_a, x.b_g, noise_, options_.imu_noise_inflation, options_.max_imu_gap_s);
+  return imu::preintegrate(imu, newestTime(), t_ns, x.b_a, x.b_g, noise_, options_.max_imu_gap_s);
 }
 
 void VioEstimator::addState(std::int64_t t_ns, imu::Preintegration pre, const std::optional<SE3>& T_w_b) {

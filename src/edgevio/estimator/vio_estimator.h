@@ -93,7 +93,7 @@ class VioEstimator {
   bool addVisualLink(std::size_t r, std::size_t n, const geometry::SE3& T_nr, const Mat6& covariance);
 
   EstimatorOptions options_;
-  camera::ImuNoise noise_;
+  camera::ImuNoise noise_;  ///< the calibration's densities times the *_inflation options
   bool inertial_ = true;
   Window window_;
   imu::NavState predicted_newest_;  ///< IMU prediction of the newest state, for the external check

@@ -9,15 +9,13 @@ namespace edgevio::imu {
 using geometry::hat;
 using geometry::SO3;
 
-Preintegration::Preintegration(const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& n, double inflation)
-    : b_a_(b_a), b_g_(b_g) {
+Preintegration::Preintegration(const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& n) : b_a_(b_a), b_g_(b_g) {
   // Continuous densities σ [unit/√Hz]; the discrete variances σ²/δt (white)
   // and σ²·δt (random walk) are formed in propagate() with each step's δt.
-  const double k2 = inflation * inflation;
-  Q_.block<3, 3>(0, 0) = Mat3::Identity() * n.accel_noise_density * n.accel_noise_density * k2;
-  Q_.block<3, 3>(3, 3) = Mat3::Identity() * n.gyro_noise_density * n.gyro_noise_density * k2;
-  Q_.block<3, 3>(6, 6) = Mat3::Identity() * n.accel_random_walk * n.accel_random_walk * k2;
-  Q_.block<3, 3>(9, 9) = Mat3::Identity() * n.gyro_random_walk * n.gyro_random_walk * k2;
+  Q_.block<3, 3>(0, 0) = Mat3::Identity() * n.accel_noise_density * n.accel_noise_density;
+  Q_.block<3, 3>(3, 3) = Mat3::Identity() * n.gyro_noise_density * n.gyro_noise_density;
+  Q_.block<3, 3>(6, 6) = Mat3::Identity() * n.accel_random_walk * n.accel_random_walk;
+  Q_.block<3, 3>(9, 9) = Mat3::Identity() * n.gyro_random_walk * n.gyro_random_walk;
 }
 
 void Preintegration::integrate(double dt, const Vec3& acc0, const Vec3& gyr0, const Vec3& acc1, const Vec3& gyr1) {
@@ -133,8 +131,7 @@ Vec15 Preintegration::residual(const NavState& i, const NavState& j, Mat15* J_i,
 }
 
 std::optional<Preintegration> preintegrate(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::int64_t t1,
-                                           const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise, double inflation,
-                                           double max_gap_s) {
+                                           const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise, double max_gap_s) {
   // A gap is judged on the raw readings around [t0, t1]: cut at frame times,
   // interpolation would bridge it in frame-length pieces.
   const auto byTime = [](const io::ImuSample& s, std::int64_t t) { return s.t_ns < t; };
@@ -142,7 +139,7 @@ std::optional<Preintegration> preintegrate(const std::vector<io::ImuSample>& imu
   if (it != imu.begin()) --it;
   for (; it != imu.end() && it + 1 != imu.end() && it->t_ns < t1; ++it)
     if (static_cast<double>((it + 1)->t_ns - it->t_ns) * 1e-9 > max_gap_s) return std::nullopt;
-  Preintegration p(b_a, b_g, noise, inflation);
+  Preintegration p(b_a, b_g, noise);
   const bool covered = forEachImuInterval(imu, t0, t1, [&](double dt, const Vec3& a0, const Vec3& w0, const Vec3& a1, const Vec3& w1) {
     p.integrate(dt, a0, w0, a1, w1);
   });

@@ -39,8 +39,9 @@ struct NavState {
 
 class Preintegration {
  public:
-  /// Biases are the linearisation point; `noise` densities times `inflation`.
-  Preintegration(const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise, double inflation = 1.0);
+  /// Biases are the linearisation point; `noise` holds the densities the
+  /// covariance is propagated with (the estimator passes them inflated).
+  Preintegration(const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise);
 
   /// Adds the interval between two consecutive IMU readings (dt in seconds).
   void integrate(double dt, const Vec3& acc0, const Vec3& gyr0, const Vec3& acc1, const Vec3& gyr1);
@@ -86,7 +87,7 @@ class Preintegration {
 /// consecutive readings are more than max_gap_s apart (a gap is not bridged).
 std::optional<Preintegration> preintegrate(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns,
                                            const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise,
-                                           double inflation = 1.0, double max_gap_s = 1.0);
+                                           double max_gap_s = 1.0);
 
 /// Gravity in the world frame as the propagation subtracts it (METHOD.md §2).
 inline Vec3 gravity() { return Vec3(0.0, 0.0, 9.81); }
