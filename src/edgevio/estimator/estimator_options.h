@@ -19,7 +19,7 @@ struct EstimatorOptions {
   double front_translation_m = 0.3;           ///< front marginalisation when ‖Δp‖/this + angle/front_rotation_deg < 1 [m]
   double front_rotation_deg = 10.0;           ///< (distance of the second-newest state to the keyframe) [deg]
   double visual_covariance_scale = 10.0;      ///< a tracking link's covariance is the alignment's (JᵀWJ)⁻¹ times this [-]
-  double imu_noise_inflation = 2.0;           ///< IMU white-noise densities from the calibration times this [-]
+  double imu_noise_inflation = 5.0;           ///< IMU white-noise densities from the calibration times this [-]
   double gyro_bias_walk_inflation = 2.0;      ///< the gyroscope's bias random walk from the calibration times this [-]
   double accel_bias_walk_inflation = 2.0;     ///< the accelerometer's bias random walk from the calibration times this [-]
   double max_imu_gap_s = 0.05;                ///< IMU readings further apart than this break the inertial chain (restart) [s]
