@@ -12,7 +12,7 @@ struct EstimatorOptions {
   double huber_translation_m = 0.1;           ///< c_t of eq 24 [m]
   double huber_rotation_deg = 2.0;            ///< c_a of eq 25 [deg]
   double damping = 1e-9;                      ///< first λ of the perturbed Cholesky, relative to the largest diagonal entry [-]
-  double external_check_rotation_deg = 3.0;   ///< reject a tracking link this far in rotation from the IMU prediction [deg]
+  double external_check_rotation_deg = 1.0;   ///< reject a tracking link this far in rotation from the IMU prediction (paper: 3) [deg]
   double external_check_translation_m = 0.2;  ///< ... or this far in translation [m]
   double loop_check_rotation_deg = 1.0;       ///< reject a loop link this far in rotation from the window's estimate of it [deg]
   double loop_check_translation_m = 0.1;      ///< ... or this far in translation [m]
@@ -42,7 +42,7 @@ struct EstimatorOptions {
     v("huber_translation_m", huber_translation_m, "m", "c_t of eq 24: Huber threshold of a visual link's translation error");
     v("huber_rotation_deg", huber_rotation_deg, "deg", "c_a of eq 25: Huber threshold of a visual link's rotation error");
     v("damping", damping, "-", "first lambda of the perturbed Cholesky, relative to the largest diagonal entry");
-    v("external_check_rotation_deg", external_check_rotation_deg, "deg", "reject a tracking link this far in rotation from the IMU prediction");
+    v("external_check_rotation_deg", external_check_rotation_deg, "deg", "reject a tracking link this far in rotation from the IMU prediction (paper: 3)");
     v("external_check_translation_m", external_check_translation_m, "m", "... or this far in translation");
     v("loop_check_rotation_deg", loop_check_rotation_deg, "deg", "IMU modes: reject a loop link this far in rotation from the window's estimate of the same relative pose");
     v("loop_check_translation_m", loop_check_translation_m, "m", "... or this far in translation");
