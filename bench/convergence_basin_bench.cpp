@@ -47,7 +47,7 @@ int main() {
     cv::Mat l, r;
     fx.frame(i, &l, &r);
     View v{i, vision::buildEdgePyramid(l, fx.rect->rectifiedCamera(), vo), {}};
-    v.depth = vision::computeKeyframeDepth(v.pyr, vision::downsample2(r), fx.rect->baseline(), vo);
+    v.depth = vision::computeKeyframeDepth(v.pyr, r, fx.rect->baseline(), vo);
     if (v.depth.points[0].size() >= 2000) views.push_back(std::move(v));
   }
   const auto currentPyramid = [&](std::size_t j) {

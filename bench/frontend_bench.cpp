@@ -28,7 +28,7 @@ struct Data {
     const vision::VisionOptions vo;
     ref_pyr = vision::buildEdgePyramid(ref_left, fx.rect->rectifiedCamera(), vo);
     cur_pyr = vision::buildEdgePyramid(cur_left, fx.rect->rectifiedCamera(), vo);
-    depth = vision::computeKeyframeDepth(ref_pyr, vision::downsample2(ref_right), fx.rect->baseline(), vo);
+    depth = vision::computeKeyframeDepth(ref_pyr, ref_right, fx.rect->baseline(), vo);
     prior = geometry::SE3(fx.relative(1500, 1510).so3(), Vec3::Zero());
   }
 };
@@ -93,11 +93,19 @@ BENCHMARK(BM_EdgeLinesLevel0)->Unit(benchmark::kMillisecond);
 void BM_StereoBlockMatching(benchmark::State& state) {
   const Data& d = data();
   const vision::VisionOptions vo;
-  const cv::Mat right0 = vision::downsample2(d.ref_right);
-  for (auto _ : state) benchmark::DoNotOptimize(vision::computeKeyframeDepth(d.ref_pyr, right0, d.fx.rect->baseline(), vo));
+  for (auto _ : state) benchmark::DoNotOptimize(vision::computeKeyframeDepth(d.ref_pyr, d.ref_right, d.fx.rect->baseline(), vo));
   state.SetLabel("StereoBM 64 disparities, block 13, 376x240, + depth pooling (per keyframe)");
 }
 BENCHMARK(BM_StereoBlockMatching)->Unit(benchmark::kMillisecond);
+
+void BM_StereoBlockMatchingFullResolution(benchmark::State& state) {
+  const Data& d = data();
+  vision::VisionOptions vo;
+  vo.stereo_full_resolution = true;
+  for (auto _ : state) benchmark::DoNotOptimize(vision::computeKeyframeDepth(d.ref_pyr, d.ref_right, d.fx.rect->baseline(), vo));
+  state.SetLabel("+ StereoBM 128 disparities, block 21, 752x480, pooled and cross-checked (per keyframe; vision.stereo_full_resolution)");
+}
+BENCHMARK(BM_StereoBlockMatchingFullResolution)->Unit(benchmark::kMillisecond);
 
 void BM_EdgeAlignment(benchmark::State& state) {
   const Data& d = data();

@@ -27,7 +27,7 @@ std::shared_ptr<const tracking::KeyframeData> keyframe(const test::RenderFixture
   auto k = std::make_shared<tracking::KeyframeData>();
   k->t_ns = t;
   k->pyramid = vision::buildEdgePyramid(f.left, fx.rectifier().rectifiedCamera(), vo);
-  k->depth = vision::computeKeyframeDepth(k->pyramid, vision::downsample2(f.right.get()), fx.rectifier().baseline(), vo);
+  k->depth = vision::computeKeyframeDepth(k->pyramid, f.right.get(), fx.rectifier().baseline(), vo);
   return k;
 }
 

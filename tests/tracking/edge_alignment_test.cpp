@@ -77,7 +77,7 @@ AlignmentCase alignAlongPath(const test::RenderFixture& fx, std::size_t i, int f
   const vision::VisionOptions vo;
   const AlignmentOptions ao;
   const vision::EdgePyramid ref_pyr = vision::buildEdgePyramid(ref.left, fx.rectifier().rectifiedCamera(), vo);
-  const vision::KeyframeDepth depth = vision::computeKeyframeDepth(ref_pyr, vision::downsample2(ref.right.get()), fx.rectifier().baseline(), vo);
+  const vision::KeyframeDepth depth = vision::computeKeyframeDepth(ref_pyr, ref.right.get(), fx.rectifier().baseline(), vo);
   const vision::EdgePyramid cur_pyr = vision::buildEdgePyramid(cur.left, fx.rectifier().rectifiedCamera(), vo);
   AlignmentCase c;
   c.truth = (path[j].T_w_b * T_b_c).inverse() * (path[i].T_w_b * T_b_c);

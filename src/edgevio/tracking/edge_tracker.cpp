@@ -37,7 +37,7 @@ void EdgeTracker::makeKeyframe(vision::EdgePyramid pyramid, const LazyImage& rig
     out->right_image_unreadable = true;
     data->depth.points.assign(pyramid.levels.size(), {});
   } else {
-    data->depth = vision::computeKeyframeDepth(pyramid, vision::downsample2(right_full.get()), rect_.baseline(), vision_);
+    data->depth = vision::computeKeyframeDepth(pyramid, right_full.get(), rect_.baseline(), vision_);
   }
   data->pyramid = std::move(pyramid);
   out->bm_ms = data->depth.bm_ms;

@@ -16,6 +16,9 @@ std::string VisionOptions::validate() const {
   if (stereo_block_size < 5 || stereo_block_size % 2 == 0 || stereo_block_size > 51) return "stereo_block_size: odd, in [5, 51]";
   if (!(stereo_min_disparity >= 0)) return "stereo_min_disparity: must be >= 0";
   if (!(stereo_disparity_sigma > 0)) return "stereo_disparity_sigma: must be > 0";
+  if (stereo_full_resolution_block_size < 5 || stereo_full_resolution_block_size % 2 == 0 || stereo_full_resolution_block_size > 51)
+    return "stereo_full_resolution_block_size: odd, in [5, 51]";
+  if (!(stereo_full_resolution_max_difference_px > 0)) return "stereo_full_resolution_max_difference_px: must be > 0";
   return {};
 }
 
@@ -48,6 +51,7 @@ EdgePyramid buildEdgePyramid(const cv::Mat& rectified_full, const camera::Camera
                              bool with_distance_transform) {
   using Clock = std::chrono::steady_clock;
   EdgePyramid p;
+  p.full = rectified_full;
   LevelCamera lc{cam.fx, cam.fy, cam.cx, cam.cy, cam.width, cam.height};
   cv::Mat img = rectified_full;
   for (int l = 0; l < o.levels; ++l) {

@@ -30,6 +30,7 @@ struct EdgeLevel {
 };
 
 struct EdgePyramid {
+  cv::Mat full;  ///< the rectified image the pyramid was built from (keyframes match stereo on it)
   std::vector<EdgeLevel> levels;
   double canny_ms = 0.0, dt_ms = 0.0;  ///< time spent, for frames.csv and benchmarks
   double lines_ms = 0.0;               ///< of which: sub-pixel edge lines on level 0 (not in the paper)

@@ -14,8 +14,11 @@ struct VisionOptions {
   double canny_fixed_high = 80.0;      ///< fixed mode high threshold [gradient]
   int stereo_num_disparities = 64;     ///< StereoBM search range at level 0 (multiple of 16) [px]
   int stereo_block_size = 13;          ///< StereoBM block (odd) [px]
-  double stereo_min_disparity = 3.0;   ///< smaller disparities are invalid (too far) [px]
-  double stereo_disparity_sigma = 0.5; ///< std. dev. of a block-matching disparity, for depth pooling [px]
+  double stereo_min_disparity = 3.0;   ///< smaller level-0 disparities are invalid (too far) [px]
+  double stereo_disparity_sigma = 0.5; ///< std. dev. of a block-matching disparity in the matched pair's pixels, for depth pooling [px]
+  bool stereo_full_resolution = false; ///< also match the camera-resolution pair, pool it into level 0, keep it where it agrees
+  int stereo_full_resolution_block_size = 21;  ///< its StereoBM block (odd) [full-resolution px]
+  double stereo_full_resolution_max_difference_px = 1.0;  ///< kept where within this of the level-0 disparity [level-0 px]
 
   template <class Visitor>
   void visit(Visitor& v) {
@@ -27,9 +30,12 @@ struct VisionOptions {
     v("canny_fixed_low", canny_fixed_low, "grad", "fixed-mode low threshold");
     v("canny_fixed_high", canny_fixed_high, "grad", "fixed-mode high threshold");
     v("stereo_num_disparities", stereo_num_disparities, "px", "StereoBM disparity range at level 0 (multiple of 16)");
-    v("stereo_block_size", stereo_block_size, "px", "StereoBM block size (odd)");
-    v("stereo_min_disparity", stereo_min_disparity, "px", "smaller disparities are invalid");
-    v("stereo_disparity_sigma", stereo_disparity_sigma, "px", "disparity std. dev., weights depth pooling across levels");
+    v("stereo_block_size", stereo_block_size, "px", "StereoBM block size (odd) at level 0");
+    v("stereo_min_disparity", stereo_min_disparity, "px", "smaller level-0 disparities are invalid");
+    v("stereo_disparity_sigma", stereo_disparity_sigma, "px", "disparity std. dev. in the matched pair's pixels, weights depth pooling");
+    v("stereo_full_resolution", stereo_full_resolution, "-", "also match the camera-resolution pair, pooled into level 0, kept where it agrees with level 0");
+    v("stereo_full_resolution_block_size", stereo_full_resolution_block_size, "px", "its StereoBM block size (odd, full-resolution pixels)");
+    v("stereo_full_resolution_max_difference_px", stereo_full_resolution_max_difference_px, "px", "kept where within this of the level-0 disparity (level-0 pixels)");
   }
   std::string validate() const;
 };
