@@ -58,12 +58,11 @@ KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right
   KeyframeDepth out;
   const auto t0 = std::chrono::steady_clock::now();
   cv::Mat rho, var;  // inverse depth and its variance per level-0 pixel; a variance of 0 marks an invalid pixel
-  const cv::Mat_<float> d0 =
-      inverseDepth(left.levels[0].image, downsample2(right_full), left.levels[0].camera.fx * baseline_m, o.stereo_num_disparities,
-                   o.stereo_block_size, o.stereo_min_disparity, o, &rho, &var);
+  const double fb0 = left.levels[0].camera.fx * baseline_m;
+  const cv::Mat_<float> d0 = inverseDepth(left.levels[0].image, downsample2(right_full), fb0, o.stereo_num_disparities,
+                                          o.stereo_block_size, o.stereo_min_disparity, o, &rho, &var);
   if (o.stereo_full_resolution) {
     cv::Mat rho_f, var_f;
-    const double fb0 = left.levels[0].camera.fx * baseline_m;
     inverseDepth(left.full, right_full, 2.0 * fb0, 2 * o.stereo_num_disparities, o.stereo_full_resolution_block_size,
                  2.0 * o.stereo_min_disparity, o, &rho_f, &var_f);
     poolHalf(&rho_f, &var_f);
