@@ -200,5 +200,47 @@ TEST(EdgeAlignment, ARotationPriorAtTheTruthMakesLinksFiveFramesApartNoWorse) {
   EXPECT_LE(sum[1][1], sum[0][1]);
 }
 
+TEST(EdgeAlignment, TheSelfCheckRefusesAFitThatPinsOnlyARay) {
+  // Reference points gathered in one small patch of the image lie on their
+  // edges at the true pose (small mean distance, all visible) but fix little
+  // more than the ray to the patch: a step δz along it only rescales the patch,
+  // moving its points by extent·δz/Z pixels (8 px·δz/2 m here), and rotation
+  // absorbs the rest; the whole view fixes the translation to millimetres.
+  // The self check must tell the two apart by the translation's σ.
+  const auto& fx = fixture();
+  const std::size_t i = 1300, j = i + 10;
+  const SE3 T_b_c = fx.rectifier().T_b_rect(0);
+  const StereoFrame ref = fx.frame(fx.path()[i].T_w_b, 0, i), cur = fx.frame(fx.path()[j].T_w_b, 1, j);
+  const vision::VisionOptions vo;
+  const vision::EdgePyramid ref_pyr = vision::buildEdgePyramid(ref.left, fx.rectifier().rectifiedCamera(), vo);
+  const vision::KeyframeDepth depth = vision::computeKeyframeDepth(ref_pyr, ref.right.get(), fx.rectifier().baseline(), vo);
+  const vision::EdgePyramid cur_pyr = vision::buildEdgePyramid(cur.left, fx.rectifier().rectifiedCamera(), vo);
+  const SE3 truth = (fx.path()[j].T_w_b * T_b_c).inverse() * (fx.path()[i].T_w_b * T_b_c);
+  const std::vector<Eigen::Vector3f>& all = depth.points[0];
+  ASSERT_GE(all.size(), 1000u);
+  // The patch: level-0 points within 8 px (in the keyframe's image) of the middle point.
+  const vision::LevelCamera& c = ref_pyr.levels[0].camera;
+  const auto pixel = [&](const Eigen::Vector3f& P) { return Vec2(c.fx * P.x() / P.z() + c.cx, c.fy * P.y() / P.z() + c.cy); };
+  const Vec2 centre = pixel(all[all.size() / 2]);
+  std::vector<Eigen::Vector3f> patch;
+  for (const Eigen::Vector3f& P : all)
+    if ((pixel(P) - centre).norm() <= 8.0) patch.push_back(P);
+  ASSERT_GE(patch.size(), 30u);  // alignment's min_points
+  const AlignmentOptions ao;
+  const AlignmentResult whole = alignEdges({all}, cur_pyr, truth, ao);
+  const AlignmentResult pinned = alignEdges({patch}, cur_pyr, truth, ao);
+  std::printf("whole view: %zu points, mean distance %.2f px, translation sigma %.4f m; one patch: %zu points, %.2f px, %.3f m\n",
+              all.size(), whole.mean_distance_px, whole.translation_sigma_m, patch.size(), pinned.mean_distance_px,
+              pinned.translation_sigma_m);
+  EXPECT_TRUE(whole.self_check_passed);
+  EXPECT_LT(whole.translation_sigma_m, ao.self_check_max_translation_sigma_m / 10);
+  // The patch passes every other test of the self check...
+  EXPECT_LT(pinned.mean_distance_px, ao.self_check_max_mean_distance_px);
+  EXPECT_GE(pinned.visible_ratio, ao.self_check_min_visible_ratio);
+  // ...and fails on its σ alone.
+  EXPECT_GT(pinned.translation_sigma_m, ao.self_check_max_translation_sigma_m);
+  EXPECT_FALSE(pinned.self_check_passed);
+}
+
 }  // namespace
 }  // namespace edgevio::tracking

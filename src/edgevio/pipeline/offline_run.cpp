@@ -42,7 +42,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   std::ofstream frames_csv(fs::path(req.out_dir) / "frames.csv");
   if (!frames_csv) throw InputError(req.out_dir, 0, "cannot write to the output folder");
   frames_csv << "timestamp_ns,keyframe,keyframe_reason,aligned,self_check,reference_points,points_used,visible_ratio,"
-                "iterations,mean_distance_px,prediction_check,external_check,external_rotation_deg,external_translation_m,"
+                "iterations,mean_distance_px,translation_sigma_m,prediction_check,external_check,external_rotation_deg,external_translation_m,"
                 "est_iterations,est_initial_cost,est_final_cost,marginalized,loop_candidates,loop_accepted,loop_window_rejected,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,"
                 "solve_ms,marginalize_ms,loop_ms,total_ms\n";
   {
@@ -198,13 +198,14 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
     const estimator::EstimatorUpdate& e = fr.estimator;
     char row[768];
     std::snprintf(row, sizeof row,
-                  "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%s,%s,%.3f,%.4f,%d,%.6g,%.6g,%s,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
+                  "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%.4g,%s,%s,%.3f,%.4f,%d,%.6g,%.6g,%s,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
                   static_cast<long long>(t.t_ns), t.keyframe || fr.forced_keyframe ? 1 : 0,
                   t.keyframe_reason.empty() ? (t.promoted_previous ? "previous frame promoted"
                                                : fr.forced_keyframe ? "forced by the estimator" : "-")
                                             : t.keyframe_reason.c_str(),
                   t.aligned ? 1 : 0, t.self_check_passed ? 1 : 0, t.reference_points, t.alignment.points_used,
                   t.alignment.visible_ratio, t.alignment.iterations, t.alignment.mean_distance_px,
+                  t.alignment.translation_sigma_m,
                   t.gyro_check_failed ? "gyro" : t.translation_check_failed ? "translation" : "-",
                   fr.external_check.c_str(), fr.external.rotation_deg, fr.external.translation_m, e.iterations,
                   e.initial_cost, e.final_cost, e.marginalized.c_str(), fr.loop.candidates,

@@ -16,6 +16,7 @@ struct AlignmentOptions {
   int max_points = 3000;                      ///< at most this many reference points per level, evenly strided; 0 = all [-]
   double self_check_max_mean_distance_px = 5.0;  ///< self check: mean υ at level 0 at most this [px]
   double self_check_min_visible_ratio = 0.5;     ///< self check: at least this fraction of points in the image [-]
+  double self_check_max_translation_sigma_m = 0.2;  ///< self check: σ of the translation along its weakest direction at most this (1 level-0 px of edge noise) [m]
 
   template <class Visitor>
   void visit(Visitor& v) {
@@ -30,6 +31,8 @@ struct AlignmentOptions {
     v("max_points", max_points, "-", "at most this many reference points per level (even stride); 0 = all");
     v("self_check_max_mean_distance_px", self_check_max_mean_distance_px, "px", "self check: mean distance at level 0");
     v("self_check_min_visible_ratio", self_check_min_visible_ratio, "-", "self check: fraction of points in the image");
+    v("self_check_max_translation_sigma_m", self_check_max_translation_sigma_m, "m",
+      "self check: std. dev. of the translation along its weakest direction, for 1 px of edge noise (a collapsed fit: all points on one spot)");
   }
   std::string validate() const;
 };

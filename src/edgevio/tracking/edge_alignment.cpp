@@ -1,6 +1,7 @@
 #include "edgevio/tracking/edge_alignment.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,6 +23,7 @@ std::string AlignmentOptions::validate() const {
   if (max_points < 0 || (max_points > 0 && max_points < min_points)) return "max_points: 0 (all) or at least min_points";
   if (!(self_check_max_mean_distance_px > 0)) return "self_check_max_mean_distance_px: must be > 0";
   if (!(self_check_min_visible_ratio >= 0 && self_check_min_visible_ratio <= 1)) return "self_check_min_visible_ratio: in [0, 1]";
+  if (!(self_check_max_translation_sigma_m > 0)) return "self_check_max_translation_sigma_m: must be > 0";
   return {};
 }
 
@@ -196,9 +198,18 @@ AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref,
     // one-edge view): such a result cannot pass, however close to the edges.
     const bool constrained = s.visible >= o.min_points && ldlt.info() == Eigen::Success && ldlt.isPositive();
     res.covariance = constrained ? Mat6(ldlt.solve(Mat6::Identity())) : Mat6(Mat6::Identity() * 1e6);
+    // σ along the weakest direction: points that collapsed onto one spot of an
+    // edge lie close to it (small mean distance) yet fix nothing but a ray.
+    res.translation_sigma_m =
+        res.covariance.allFinite()
+            ? std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Mat3>(res.covariance.topLeftCorner<3, 3>(),
+                                                                          Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()))
+            : std::numeric_limits<double>::infinity();
+    // On a coarser level one residual pixel is 2^finest level-0 pixels.
     res.self_check_passed = constrained && res.covariance.allFinite() &&
                             res.mean_distance_px <= std::ldexp(o.self_check_max_mean_distance_px, -finest) &&
-                            res.visible_ratio >= o.self_check_min_visible_ratio;
+                            res.visible_ratio >= o.self_check_min_visible_ratio &&
+                            res.translation_sigma_m <= std::ldexp(o.self_check_max_translation_sigma_m, finest);
   }
   res.T_nr = T;
   res.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

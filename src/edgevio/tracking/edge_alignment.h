@@ -48,6 +48,7 @@ struct AlignmentResult {
   double mean_distance_px = 0.0;       ///< mean υ of the visible points at the finest level (its pixels)
   double visible_ratio = 0.0;          ///< fraction of the finest level's points inside the image
   int points_used = 0;                 ///< visible points at the finest level
+  double translation_sigma_m = 0.0;    ///< √ of the largest eigenvalue of the covariance's translation block [m]
   int iterations = 0;                  ///< over all levels
   double ms = 0.0;
 };
