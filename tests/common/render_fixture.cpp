@@ -3,6 +3,7 @@
 #include "edgevio/io/calibration_io.h"
 #include "edgevio/sim/renderer.h"
 #include "edgevio/sim/trajectory_source.h"
+#include "edgevio/vision/keyframe_depth.h"
 
 namespace edgevio::test {
 
@@ -17,6 +18,17 @@ RenderFixture::RenderFixture(const std::string& scenario, double seconds) : rig_
   scene_ = sim::buildScene(path, o, 21);
   rect_ = std::make_unique<camera::StereoRectifier>(rig_, camera::RectificationOptions{});
   renderer_ = std::make_unique<sim::StereoFrameRenderer>(scene_, rig_);
+}
+
+std::shared_ptr<const tracking::KeyframeData> RenderFixture::keyframe(const geometry::SE3& T_w_b, std::int64_t t_ns,
+                                                                      std::uint64_t noise_key) const {
+  const tracking::StereoFrame f = frame(T_w_b, t_ns, noise_key);
+  const vision::VisionOptions vo;
+  auto k = std::make_shared<tracking::KeyframeData>();
+  k->t_ns = t_ns;
+  k->pyramid = vision::buildEdgePyramid(f.left, rect_->rectifiedCamera(), vo);
+  k->depth = vision::computeKeyframeDepth(k->pyramid, f.right.get(), rect_->baseline(), vo);
+  return k;
 }
 
 tracking::StereoFrame RenderFixture::frame(const geometry::SE3& T_w_b, std::int64_t t_ns, std::uint64_t noise_key) const {

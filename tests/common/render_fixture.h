@@ -19,6 +19,9 @@ class RenderFixture {
   const camera::StereoRectifier& rectifier() const { return *rect_; }
   const io::Trajectory& path() const { return samples_; }  ///< 200 Hz
   tracking::StereoFrame frame(const geometry::SE3& T_w_b, std::int64_t t_ns = 0, std::uint64_t noise_key = 1) const;
+  /// A keyframe (edge pyramid and stereo depth, default options) rendered at T_w_b.
+  std::shared_ptr<const tracking::KeyframeData> keyframe(const geometry::SE3& T_w_b, std::int64_t t_ns,
+                                                         std::uint64_t noise_key) const;
   /// True depth along the rectified left camera's z axis at each of its pixels [m].
   cv::Mat rectifiedDepth(const geometry::SE3& T_w_b) const;
 

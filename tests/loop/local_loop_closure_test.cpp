@@ -10,8 +10,6 @@
 #include <cstdio>
 
 #include "common/render_fixture.h"
-#include "edgevio/vision/edge_pyramid.h"
-#include "edgevio/vision/keyframe_depth.h"
 
 namespace edgevio::loop {
 namespace {
@@ -22,13 +20,7 @@ using geometry::SO3;
 constexpr double kPi = 3.14159265358979323846;
 
 std::shared_ptr<const tracking::KeyframeData> keyframe(const test::RenderFixture& fx, const SE3& T_w_b, std::int64_t t) {
-  const tracking::StereoFrame f = fx.frame(T_w_b, t, static_cast<std::uint64_t>(t));
-  const vision::VisionOptions vo;
-  auto k = std::make_shared<tracking::KeyframeData>();
-  k->t_ns = t;
-  k->pyramid = vision::buildEdgePyramid(f.left, fx.rectifier().rectifiedCamera(), vo);
-  k->depth = vision::computeKeyframeDepth(k->pyramid, f.right.get(), fx.rectifier().baseline(), vo);
-  return k;
+  return fx.keyframe(T_w_b, t, static_cast<std::uint64_t>(t));
 }
 
 TEST(LocalLoopClosure, AcceptsARevisitAndRejectsADifferentPlace) {

@@ -12,6 +12,7 @@
 #include "edgevio/estimator/estimator_options.h"
 #include "edgevio/eval/eval_options.h"
 #include "edgevio/io/dataset_options.h"
+#include "edgevio/loop/back_link_options.h"
 #include "edgevio/loop/loop_options.h"
 #include "edgevio/sim/sim_options.h"
 #include "edgevio/tracking/alignment_options.h"
@@ -27,6 +28,7 @@ struct Config {
   tracking::AlignmentOptions alignment;
   tracking::TrackingOptions tracking;
   estimator::EstimatorOptions estimator;
+  loop::BackLinkOptions back_links;
   loop::LoopOptions loop;
   eval::EvalOptions eval;
   sim::SimOptions sim;
@@ -39,6 +41,7 @@ struct Config {
     v("alignment", alignment, "edge alignment: Gauss-Newton, robust weights, self check (METHOD.md §3)");
     v("tracking", tracking, "keyframe policy, initial guess, static initialisation (METHOD.md §3, §5)");
     v("estimator", estimator, "sliding-window estimator: IMU links, external check, two-way marginalisation (METHOD.md §4, §5)");
+    v("back_links", back_links, "links from each new keyframe back into the keyframes before it (not in METHOD.md; window modes)");
     v("loop", loop, "local loop closure between keyframes in the window (METHOD.md §6)");
     v("eval", eval, "trajectory evaluation: association, alignment, metrics (METHOD.md §8)");
     v("sim", sim, "simulator: motion, scene, camera effects, IMU (edgevio simulate)");

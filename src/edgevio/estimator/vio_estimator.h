@@ -64,8 +64,8 @@ class VioEstimator {
   /// Appends a state at the given pose without an inertial link (no IMU).
   void addStateWithoutImu(std::int64_t t_ns, const geometry::SE3& T_w_b);
 
-  /// A loop-closure link between two keyframes in the window (METHOD.md §6);
-  /// false when either has left it, or, with the IMU, when it is farther than
+  /// A link between two keyframes in the window: a loop closure (METHOD.md §6)
+  /// or a back link (t_ref newer than t_new, loop/back_links.h); false when either has left it, or, with the IMU, when it is farther than
   /// loop_check_rotation_deg / loop_check_translation_m from the window's own
   /// estimate of the same relative pose. Both keyframes are in the window, a
   /// few seconds apart, where the IMU-backed estimate has drifted by

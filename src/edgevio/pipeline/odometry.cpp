@@ -115,6 +115,21 @@ void Odometry::closeLoops(FrameResult* r) {
   }
 }
 
+void Odometry::linkBack(const tracking::FrameTrack& t, FrameResult* r) {
+  const auto latest = tracker_.keyframeData();
+  if (config_.back_links.keyframes == 0 || !latest || latest->t_ns != t.t_ns) return;
+  std::vector<loop::LoopKeyframe> previous;  // newest first, at the window's estimates
+  for (auto it = keyframes_.rbegin(); it != keyframes_.rend(); ++it)
+    if (it->first < t.t_ns)
+      if (const auto x = estimator_.stateAt(it->first)) previous.push_back({it->second, poseOf(*x) * T_b_c_});
+  // The tracker's pose of the new keyframe carries its tracking link, so the
+  // first back link is checked against that link.
+  const loop::LoopKeyframe newest{latest, t.T_w_b * T_b_c_};
+  for (const loop::LoopLink& l : loop::backLinks(newest, previous, config_.back_links, config_.alignment, &r->back))
+    r->back_links_added += estimator_.addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
+  back_links_ += static_cast<std::size_t>(r->back_links_added);
+}
+
 FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
   const std::int64_t t_ns = frame.t_ns;
   if (inertial_ && !estimator_.initialized() && (imu_.empty() || imu_.front().t_ns > t_ns)) {
@@ -183,6 +198,7 @@ FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
   }
   if (t.keyframe || r.forced_keyframe) estimator_.markKeyframe(t_ns);
   if (tracker_.keyframeTime() != keyframe_before) closeLoops(&r);
+  if (t.keyframe && link_good) linkBack(t, &r);
 
   r.estimator = estimator_.optimize(link_good, tracker_.keyframeTime());
   if (!r.estimator.reset_reason.empty()) {

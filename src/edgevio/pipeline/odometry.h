@@ -12,6 +12,8 @@
 //                  window, which is solved and marginalised; the newest state
 //                  is the frame's pose. A rejected link makes the frame a keyframe.
 //   edge+imu+loop: the full system.
+// In the window's modes every new keyframe is also linked back into the
+// keyframes before it (loop/back_links.h).
 #include <map>
 #include <memory>
 #include <optional>
@@ -22,6 +24,7 @@
 #include "edgevio/config/config.h"
 #include "edgevio/estimator/vio_estimator.h"
 #include "edgevio/imu/gyro_integration.h"
+#include "edgevio/loop/back_links.h"
 #include "edgevio/loop/local_loop_closure.h"
 #include "edgevio/tracking/edge_tracker.h"
 
@@ -36,6 +39,8 @@ struct FrameResult {
   std::string external_check = "-";      ///< accepted | rejected | no reference | - (no link offered, or no IMU)
   estimator::ExternalCheckResult external;
   bool forced_keyframe = false;          ///< became a keyframe because its link was rejected or the keyframe left the window
+  loop::BackLinkStats back;              ///< a new keyframe's links back into the keyframes before it
+  int back_links_added = 0;              ///< ... of which entered the window (the estimator's loop check)
   bool loop_ran = false;                 ///< a new keyframe looked for loop closures
   loop::LoopStats loop;
   std::string event;                     ///< a reset or an IMU gap, for the log
@@ -62,6 +67,7 @@ class Odometry {
   bool lost() const { return tracker_.lost(); }
   std::size_t resets() const { return resets_; }
   std::size_t loopClosures() const { return loop_closures_; }
+  std::size_t backLinks() const { return back_links_; }
 
  private:
   FrameResult processEdgeOnly(tracking::PreparedFrame frame);
@@ -69,6 +75,7 @@ class Odometry {
   FrameResult initializeWindow(tracking::PreparedFrame frame);
   void restart(std::int64_t t_ns, imu::NavState x, bool velocity_known, bool attitude_known);
   void closeLoops(FrameResult* r);
+  void linkBack(const tracking::FrameTrack& t, FrameResult* r);
   std::optional<geometry::SO3> gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const;
 
   std::string mode_;
@@ -81,7 +88,7 @@ class Odometry {
   estimator::VioEstimator estimator_;
   std::map<std::int64_t, std::shared_ptr<const tracking::KeyframeData>> keyframes_;  ///< in the window, for loop closure
   std::int64_t t_first_ = -1, t_prev_ = -1;
-  std::size_t resets_ = 0, loop_closures_ = 0;
+  std::size_t resets_ = 0, loop_closures_ = 0, back_links_ = 0;
 };
 
 }  // namespace edgevio::pipeline

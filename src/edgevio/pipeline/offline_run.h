@@ -29,6 +29,7 @@ struct RunRequest {
 struct RunSummary {
   std::size_t frames = 0, keyframes = 0, self_check_failures = 0, skipped_unreadable = 0;
   std::size_t external_check_rejections = 0, estimator_resets = 0, loop_closures = 0;
+  std::size_t back_links = 0;  ///< keyframe back links that entered the window
   std::size_t dropped_frames = 0;  ///< real-time mode: frames dropped because the pipeline was behind
   /// Alignments redone from the prediction: far from the gyroscope's rotation, or
   /// (IMU modes) from the IMU's translation (tracking.gyro_check_deg, imu_translation_check_m).
