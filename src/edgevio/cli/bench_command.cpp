@@ -122,7 +122,7 @@ std::vector<Job> planJobs(const std::string& matrix_path, const std::string& out
 void writeTimingTable(std::ostream& out, const std::vector<eval::RunEvaluation>& runs, const std::string& runs_dir) {
   out << "\n## Time per component [ms, mean]\n\nPer frame, except block matching and loop closure (per keyframe); "
          "one thread per run.\n\n| sequence | mode | Canny | distance transform | edge lines | block matching | "
-         "alignment | optimisation | marginalisation | loop closure | total |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+         "alignment | back links | optimisation | marginalisation | loop closure | total |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& r : runs) {
     std::vector<pipeline::ComponentTime> times;
     try {
@@ -140,7 +140,7 @@ void writeTimingTable(std::ostream& out, const std::vector<eval::RunEvaluation>&
       return std::string("-");
     };
     out << "| " << r.sequence << " | " << r.mode << " | " << cell("Canny") << " | " << cell("distance") << " | "
-        << cell("edge lines") << " | " << cell("block") << " | " << cell("edge alignment") << " | " << cell("optimisation")
+        << cell("edge lines") << " | " << cell("block") << " | " << cell("edge alignment") << " | " << cell("back links") << " | " << cell("optimisation")
         << " | " << cell("marginalisation") << " | " << cell("loop") << " | " << cell("total") << " |\n";
   }
 }

@@ -1,5 +1,7 @@
 #include "edgevio/loop/back_links.h"
 
+#include <chrono>
+
 #include "edgevio/tracking/edge_alignment.h"
 
 namespace edgevio::loop {
@@ -9,6 +11,7 @@ using geometry::SE3;
 std::vector<LoopLink> backLinks(const LoopKeyframe& latest, const std::vector<LoopKeyframe>& previous,
                                 const BackLinkOptions& o, const tracking::AlignmentOptions& alignment,
                                 BackLinkStats* stats_out) {
+  const auto t0 = std::chrono::steady_clock::now();
   BackLinkStats stats;
   std::vector<LoopLink> links;
   for (std::size_t i = 0; i < previous.size() && static_cast<int>(i) < o.keyframes; ++i) {
@@ -29,6 +32,7 @@ std::vector<LoopLink> backLinks(const LoopKeyframe& latest, const std::vector<Lo
     links.push_back({latest.data->t_ns, k.data->t_ns, a.T_nr, a.covariance});
     ++stats.accepted;
   }
+  stats.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (stats_out) *stats_out = stats;
   return links;
 }

@@ -20,6 +20,7 @@ namespace edgevio::loop {
 
 struct BackLinkStats {
   int attempts = 0, self_check_failures = 0, disagreements = 0, accepted = 0;
+  double ms = 0.0;
 };
 
 /// Links from `latest` (its points) back into the keyframes of `previous`,

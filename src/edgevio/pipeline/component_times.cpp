@@ -38,6 +38,7 @@ std::vector<ComponentTime> readComponentTimes(const std::string& path) {
                         {"lines_ms", "edge lines (level 0)", "frame", false},
                         {"bm_ms", "block matching", "keyframe", true},
                         {"align_ms", "edge alignment", "frame", false},
+                        {"back_link_ms", "back links", "keyframe", true},
                         {"solve_ms", "optimisation (window solve)", "frame", true},
                         {"marginalize_ms", "marginalisation", "frame", true},
                         {"loop_ms", "loop closure", "keyframe", true},

@@ -1,7 +1,7 @@
 #pragma once
 // Per-component processing times of a run, read back from its frames.csv:
-// the layout of the paper's Table 1 (ms per frame; block matching and loop
-// closure per keyframe), for `edgevio bench` and bench/pipeline_bench.
+// the layout of the paper's Table 1 (ms per frame; block matching, back links
+// and loop closure per keyframe), for `edgevio bench` and bench/pipeline_bench.
 #include <string>
 #include <vector>
 

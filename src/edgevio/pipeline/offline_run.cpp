@@ -43,7 +43,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   if (!frames_csv) throw InputError(req.out_dir, 0, "cannot write to the output folder");
   frames_csv << "timestamp_ns,keyframe,keyframe_reason,aligned,self_check,reference_points,points_used,visible_ratio,"
                 "iterations,mean_distance_px,translation_sigma_m,prediction_check,external_check,external_rotation_deg,external_translation_m,"
-                "est_iterations,est_initial_cost,est_final_cost,marginalized,back_links,loop_candidates,loop_accepted,loop_window_rejected,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,"
+                "est_iterations,est_initial_cost,est_final_cost,marginalized,back_links,loop_candidates,loop_accepted,loop_window_rejected,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,back_link_ms,"
                 "solve_ms,marginalize_ms,loop_ms,total_ms\n";
   {
     std::ofstream cfg(fs::path(req.out_dir) / "config.yaml");
@@ -198,7 +198,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
     const estimator::EstimatorUpdate& e = fr.estimator;
     char row[768];
     std::snprintf(row, sizeof row,
-                  "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%.4g,%s,%s,%.3f,%.4f,%d,%.6g,%.6g,%s,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
+                  "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%.4g,%s,%s,%.3f,%.4f,%d,%.6g,%.6g,%s,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
                   static_cast<long long>(t.t_ns), t.keyframe || fr.forced_keyframe ? 1 : 0,
                   t.keyframe_reason.empty() ? (t.promoted_previous ? "previous frame promoted"
                                                : fr.forced_keyframe ? "forced by the estimator" : "-")
@@ -210,7 +210,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
                   fr.external_check.c_str(), fr.external.rotation_deg, fr.external.translation_m, e.iterations,
                   e.initial_cost, e.final_cost, e.marginalized.c_str(), fr.back_links_added, fr.loop.candidates,
                   fr.loop.accepted - fr.loop.window_rejections, fr.loop.window_rejections, t.canny_ms,
-                  t.dt_ms - t.lines_ms, t.lines_ms, t.bm_ms, t.alignment.ms, e.solve_ms, e.marginalize_ms,
+                  t.dt_ms - t.lines_ms, t.lines_ms, t.bm_ms, t.alignment.ms, fr.back.ms, e.solve_ms, e.marginalize_ms,
                   fr.loop_ran ? fr.loop.ms : 0.0, total_ms);
     frames_csv << row;
     if (progress) progress(done + dropped, total, static_cast<double>(t.t_ns - pairs.front().t_ns) * 1e-9);
