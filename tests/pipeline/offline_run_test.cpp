@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "common/mini_dataset.h"
 #include "common/test_support.h"
@@ -102,6 +104,47 @@ const Simulated& simulated() {
   return s;
 }
 
+/// Median translation [m] and rotation [deg] error, against the ground truth,
+/// of the tracking links frames.csv reports (rows whose alignment passed the
+/// self check and was not rejected), read by column name.
+void medianLinkErrors(const std::string& frames_csv, const io::Trajectory& gt, double* trans_m, double* rot_deg) {
+  std::istringstream in(test::readFile(frames_csv));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string n; std::getline(header, n, ',');) names.push_back(n);
+  const auto column = [&](const char* name) {
+    return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  const auto poseAt = [&](std::int64_t t) -> const geometry::SE3* {
+    for (const auto& g : gt)
+      if (std::llabs(g.t_ns - t) < 1000000) return &g.T_w_b;
+    return nullptr;
+  };
+  std::vector<double> et, er;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream row(line);
+    for (std::string c; std::getline(row, c, ',');) f.push_back(c);
+    if (f.size() != names.size() || f[column("self_check")] != "1" || f[column("external_check")] == "rejected") continue;
+    const geometry::SE3* T_w_bn = poseAt(std::stoll(f[column("timestamp_ns")]));
+    const geometry::SE3* T_w_br = poseAt(std::stoll(f[column("reference_timestamp_ns")]));
+    if (!T_w_bn || !T_w_br) continue;
+    const auto num = [&](const char* name) { return std::stod(f[column(name)]); };
+    const geometry::SE3 link(geometry::SO3(geometry::quaternionFromXyzw(num("link_qx"), num("link_qy"), num("link_qz"), num("link_qw"))),
+                             Vec3(num("link_tx"), num("link_ty"), num("link_tz")));
+    const geometry::SE3 E = (T_w_bn->inverse() * *T_w_br).inverse() * link;
+    et.push_back(E.translation().norm());
+    er.push_back(geometry::angle(E.so3()) * 180.0 / 3.14159265358979);
+  }
+  ASSERT_GE(et.size(), 40u);
+  std::nth_element(et.begin(), et.begin() + static_cast<std::ptrdiff_t>(et.size() / 2), et.end());
+  std::nth_element(er.begin(), er.begin() + static_cast<std::ptrdiff_t>(er.size() / 2), er.end());
+  *trans_m = et[et.size() / 2];
+  *rot_deg = er[er.size() / 2];
+}
+
 TEST(OfflineRun, ShortRenderedSequenceIsAccurateAndDeterministic) {
   TempDir a, b;
   const RunSummary s = runOffline({simulated().dataset, a.path(), "edge-only", 0}, Config{});
@@ -148,6 +191,16 @@ TEST(OfflineRun, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
   for (const char* column : {"prediction_check", "external_check", "est_iterations", "est_final_cost", "marginalized",
                              "back_links", "solve_ms", "marginalize_ms"})
     EXPECT_NE(header.find(column), std::string::npos) << column;
+  // The link columns are the body's motion T_bn_br: against the ground truth
+  // the links are as good as the alignment tests' bounds (1 cm, 0.25 deg five
+  // frames apart); the camera's motion (axes turned 90 deg from the body's on
+  // the EuRoC rig) or the inverse motion would be off by about its length.
+  double link_t = 0.0, link_r = 0.0;
+  medianLinkErrors(a.file("frames.csv"), io::readTrajectory(simulated().dataset + "/mav0/state_groundtruth_estimate0/data.csv"),
+                   &link_t, &link_r);
+  std::printf("tracking links: median error %.4f m, %.4f deg\n", link_t, link_r);
+  EXPECT_LT(link_t, 0.01);
+  EXPECT_LT(link_r, 0.25);
   const std::string summary = test::readFile(a.file("summary.json"));
   EXPECT_NE(summary.find("\"estimator_resets\": 0"), std::string::npos);
   // Keyframes whose tracking link entered the window (most of them) are

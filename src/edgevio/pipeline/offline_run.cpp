@@ -42,7 +42,8 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
   std::ofstream frames_csv(fs::path(req.out_dir) / "frames.csv");
   if (!frames_csv) throw InputError(req.out_dir, 0, "cannot write to the output folder");
   frames_csv << "timestamp_ns,keyframe,keyframe_reason,aligned,self_check,reference_points,points_used,visible_ratio,"
-                "iterations,mean_distance_px,translation_sigma_m,prediction_check,external_check,external_rotation_deg,external_translation_m,"
+                "iterations,mean_distance_px,translation_sigma_m,reference_timestamp_ns,link_tx,link_ty,link_tz,link_qx,link_qy,link_qz,link_qw,"
+                "prediction_check,external_check,external_rotation_deg,external_translation_m,"
                 "est_iterations,est_initial_cost,est_final_cost,marginalized,back_links,loop_candidates,loop_accepted,loop_window_rejected,canny_ms,dt_ms,lines_ms,bm_ms,align_ms,back_link_ms,"
                 "solve_ms,marginalize_ms,loop_ms,total_ms\n";
   {
@@ -55,6 +56,7 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
       imu::staticInitialization(dataset.imu(), pairs.front().t_ns, config.tracking.static_init_window_s,
                                 config.tracking.static_accel_std_max, config.tracking.static_gyro_std_max);
 
+  const geometry::SE3 T_b_c = rect.T_b_rect(0);
   Odometry odometry(req.mode, config, dataset.calibration(), rect, dataset.imu(), init, req.realtime);
   RunSummary s;
   // Written as the run goes: memory does not grow with the sequence's length.
@@ -196,16 +198,21 @@ RunSummary runOffline(const RunRequest& req, const Config& config, const RunProg
       s.failure = "diverged: non-finite pose";
     }
     const estimator::EstimatorUpdate& e = fr.estimator;
-    char row[768];
+    // The alignment's T_nr as the body's motion T_bn_br (what ground truth
+    // gives directly: T_w_bn⁻¹·T_w_br), so the front end can be judged alone.
+    const geometry::SE3 link = T_b_c * t.alignment.T_nr * T_b_c.inverse();
+    const Quat& q = link.quaternion();
+    char row[1024];
     std::snprintf(row, sizeof row,
-                  "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%.4g,%s,%s,%.3f,%.4f,%d,%.6g,%.6g,%s,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
+                  "%lld,%d,%s,%d,%d,%d,%d,%.4f,%d,%.4f,%.4g,%lld,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.9f,%s,%s,%.3f,%.4f,%d,%.6g,%.6g,%s,%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f\n",
                   static_cast<long long>(t.t_ns), t.keyframe || fr.forced_keyframe ? 1 : 0,
                   t.keyframe_reason.empty() ? (t.promoted_previous ? "previous frame promoted"
                                                : fr.forced_keyframe ? "forced by the estimator" : "-")
                                             : t.keyframe_reason.c_str(),
                   t.aligned ? 1 : 0, t.self_check_passed ? 1 : 0, t.reference_points, t.alignment.points_used,
                   t.alignment.visible_ratio, t.alignment.iterations, t.alignment.mean_distance_px,
-                  t.alignment.translation_sigma_m,
+                  t.alignment.translation_sigma_m, static_cast<long long>(t.reference_t_ns), link.translation().x(),
+                  link.translation().y(), link.translation().z(), q.x(), q.y(), q.z(), q.w(),
                   t.gyro_check_failed ? "gyro" : t.translation_check_failed ? "translation" : "-",
                   fr.external_check.c_str(), fr.external.rotation_deg, fr.external.translation_m, e.iterations,
                   e.initial_cost, e.final_cost, e.marginalized.c_str(), fr.back_links_added, fr.loop.candidates,

@@ -6,8 +6,9 @@
 // pipeline is behind. Writes to the output folder:
 //   trajectory_tum.txt, trajectory.csv  the causal body pose of every processed frame
 //   frames.csv                          per frame: keyframe, self check, points, iterations,
-//                                       mean distance, external check, estimator iterations,
-//                                       cost, marginalised state, milliseconds per component
+//                                       mean distance, the tracking link (reference time and
+//                                       the body's motion T_bn_br), external check, estimator
+//                                       iterations, cost, marginalised state, ms per component
 //   summary.json                        mode, counts, failed, wall time, real-time factor
 //   config.yaml                         the configuration used
 #include <functional>
