@@ -19,6 +19,8 @@ std::string VisionOptions::validate() const {
   if (stereo_full_resolution_block_size < 5 || stereo_full_resolution_block_size % 2 == 0 || stereo_full_resolution_block_size > 51)
     return "stereo_full_resolution_block_size: odd, in [5, 51]";
   if (!(stereo_full_resolution_max_difference_px > 0)) return "stereo_full_resolution_max_difference_px: must be > 0";
+  if (!(stereo_discontinuity_ratio == 0 || stereo_discontinuity_ratio > 1)) return "stereo_discontinuity_ratio: 0 (off) or > 1";
+  if (stereo_discontinuity_radius_px < 1 || stereo_discontinuity_radius_px > 25) return "stereo_discontinuity_radius_px: in [1, 25]";
   return {};
 }
 

@@ -1,9 +1,11 @@
 #include "edgevio/vision/keyframe_depth.h"
 
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace edgevio::vision {
 
@@ -51,6 +53,20 @@ cv::Mat_<float> inverseDepth(const cv::Mat& left, const cv::Mat& right, double f
   return disparity;
 }
 
+/// Level-0 pixels (CV_8UC1, non-zero) whose valid inverse depths within
+/// stereo_discontinuity_radius_px span more than stereo_discontinuity_ratio;
+/// empty when the test is off.
+cv::Mat depthDiscontinuities(const cv::Mat& rho, const cv::Mat& var, const VisionOptions& o) {
+  if (o.stereo_discontinuity_ratio <= 0) return {};
+  const int side = 2 * o.stereo_discontinuity_radius_px + 1;
+  const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(side, side));
+  cv::Mat rho_max, rho_min, rho_or_inf = rho.clone();
+  rho_or_inf.setTo(std::numeric_limits<float>::max(), var <= 0.0f);  // invalid pixels take no part
+  cv::dilate(rho, rho_max, kernel);
+  cv::erode(rho_or_inf, rho_min, kernel);
+  return rho_max > static_cast<float>(o.stereo_discontinuity_ratio) * rho_min;
+}
+
 }  // namespace
 
 KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right_full, double baseline_m,
@@ -76,6 +92,7 @@ KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right
           var.at<float>(v, u) = var_f.at<float>(v, u);
         }
   }
+  const cv::Mat discontinuous = depthDiscontinuities(rho, var, o);
   out.bm_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
   for (std::size_t l = 0; l < left.levels.size(); ++l) {
@@ -88,6 +105,7 @@ KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right
       const std::uint8_t* e = level.edges.ptr<std::uint8_t>(v);
       for (int u = 0; u < level.edges.cols && u < rho.cols; ++u) {
         if (!e[u] || var.at<float>(v, u) <= 0.0f) continue;
+        if (l == 0 && !discontinuous.empty() && discontinuous.at<std::uint8_t>(v, u)) continue;
         const float z = 1.0f / rho.at<float>(v, u);
         double x = u, y = v;
         if (subpixel) {  // the same sub-pixel edge the current frame's point-to-line residual measures against

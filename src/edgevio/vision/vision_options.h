@@ -19,6 +19,8 @@ struct VisionOptions {
   bool stereo_full_resolution = false; ///< also match the camera-resolution pair, pool it into level 0, keep it where it agrees
   int stereo_full_resolution_block_size = 21;  ///< its StereoBM block (odd) [full-resolution px]
   double stereo_full_resolution_max_difference_px = 1.0;  ///< kept where within this of the level-0 disparity [level-0 px]
+  double stereo_discontinuity_ratio = 1.3;  ///< no reference point where the inverse depths within the radius span more than this factor; 0: off [-]
+  int stereo_discontinuity_radius_px = 9;   ///< ... radius of that neighbourhood at level 0 [px]
 
   template <class Visitor>
   void visit(Visitor& v) {
@@ -36,6 +38,8 @@ struct VisionOptions {
     v("stereo_full_resolution", stereo_full_resolution, "-", "also match the camera-resolution pair, pooled into level 0, kept where it agrees with level 0");
     v("stereo_full_resolution_block_size", stereo_full_resolution_block_size, "px", "its StereoBM block size (odd, full-resolution pixels)");
     v("stereo_full_resolution_max_difference_px", stereo_full_resolution_max_difference_px, "px", "kept where within this of the level-0 disparity (level-0 pixels)");
+    v("stereo_discontinuity_ratio", stereo_discontinuity_ratio, "-", "no depth where the valid inverse depths within the radius span more than this factor (depth discontinuities); 0: off");
+    v("stereo_discontinuity_radius_px", stereo_discontinuity_radius_px, "px", "radius of that neighbourhood at level 0");
   }
   std::string validate() const;
 };
