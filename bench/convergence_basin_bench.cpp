@@ -68,7 +68,7 @@ int main() {
       for (int a = 0; a < 4; ++a) {
         const Vec3 axis = Vec3(rng.gaussian(), rng.gaussian(), rng.gaussian()).normalized();
         const geometry::SE3 init(truth.so3() * geometry::SO3::exp(axis * deg / 57.29578), truth.translation());
-        ok += success(truth, tracking::alignEdges(views[k].depth.points, next[k], init, ao).T_nr);
+        ok += success(truth, tracking::alignEdges(views[k].depth, next[k], init, ao).T_nr);
         ++n;
       }
     }
@@ -86,8 +86,8 @@ int main() {
       const geometry::SE3 truth = fx.relative(v.sample, j);
       motion += truth.translation().norm();
       rot += geometry::angle(truth.so3()) * 57.29578;
-      ok_id += success(truth, tracking::alignEdges(v.depth.points, cur, geometry::SE3(), ao).T_nr);
-      ok_gyro += success(truth, tracking::alignEdges(v.depth.points, cur, geometry::SE3(truth.so3(), Vec3::Zero()), ao).T_nr);
+      ok_id += success(truth, tracking::alignEdges(v.depth, cur, geometry::SE3(), ao).T_nr);
+      ok_gyro += success(truth, tracking::alignEdges(v.depth, cur, geometry::SE3(truth.so3(), Vec3::Zero()), ao).T_nr);
       ++n;
     }
     std::printf("| %d | %.2f m, %.1f deg | %d/%d | %d/%d |\n", k, motion / n, rot / n, ok_id, n, ok_gyro, n);

@@ -112,7 +112,7 @@ void BM_EdgeAlignment(benchmark::State& state) {
   const tracking::AlignmentOptions ao;
   int iterations = 0;
   for (auto _ : state) {
-    const tracking::AlignmentResult r = tracking::alignEdges(d.depth.points, d.cur_pyr, d.prior, ao);
+    const tracking::AlignmentResult r = tracking::alignEdges(d.depth, d.cur_pyr, d.prior, ao);
     iterations = r.iterations;
   }
   state.counters["points"] = static_cast<double>(d.depth.points[0].size());

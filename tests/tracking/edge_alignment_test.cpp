@@ -4,8 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 
 #include "common/render_fixture.h"
 #include "common/test_support.h"
@@ -60,6 +61,35 @@ TEST(EdgeAlignment, ResidualJacobianMatchesNumericOnALinearField) {
   }
 }
 
+TEST(EdgeAlignment, MappedEdgeNormalMatchesNumeric) {
+  // The image of a short step along the reference edge's tangent, at the
+  // point's depth, is the tangent in the current image; the normal is it
+  // turned by −90°, so that it keeps the gradient's sign.
+  const vision::LevelCamera cam = testCamera();
+  const SE3 T(SO3::exp(Vec3(0.1, -0.2, 0.3)), Vec3(0.1, 0.05, -0.2));
+  const auto pixel = [&](const Vec3& P) {
+    const Vec3 Q = T * P;
+    return Vec2(cam.fx * Q.x() / Q.z() + cam.cx, cam.fy * Q.y() / Q.z() + cam.cy);
+  };
+  for (const Vec3& P : {Vec3(0.3, -0.2, 2.0), Vec3(-1.0, 0.4, 3.5), Vec3(0.0, 0.0, 1.0)})
+    for (const double a : {0.3, 2.0, -2.5}) {
+      const Vec2 n(std::cos(a), std::sin(a));
+      const double h = 1e-4;  // keyframe pixels along the tangent (−n_y, n_x)
+      const Vec3 dP(-n.y() * P.z() / cam.fx, n.x() * P.z() / cam.fy, 0.0);
+      const Vec2 tau = (pixel(P + h * dP) - pixel(P - h * dP)).normalized();
+      const Vec2 numeric(tau.y(), -tau.x());
+      EXPECT_LT((mapEdgeNormal(P, n, T, cam) - numeric).norm(), 1e-6) << "P " << P.transpose() << ", angle " << a;
+    }
+  // Turning the camera by φ about its optical axis (fx = fy, centred) turns
+  // the image, and every normal, by φ.
+  const vision::LevelCamera square{200.0, 200.0, 187.5, 119.5, 376, 240};
+  const double phi = 0.4;
+  const SE3 roll(SO3::exp(Vec3(0, 0, phi)), Vec3::Zero());
+  const Vec2 n = Vec2(1.0, 2.0).normalized();
+  const Vec2 turned(std::cos(phi) * n.x() - std::sin(phi) * n.y(), std::sin(phi) * n.x() + std::cos(phi) * n.y());
+  EXPECT_LT((mapEdgeNormal(Vec3(0.4, -0.3, 2.0), n, roll, square) - turned).norm(), 1e-9);
+}
+
 struct AlignmentCase {
   SE3 truth;  ///< T_nr, reference camera → current camera
   AlignmentResult result;
@@ -69,19 +99,18 @@ struct AlignmentCase {
 /// Renders the keyframe at path sample i and the current frame `frames` camera
 /// frames (50 ms each) later, aligns from `init` (identity if null).
 AlignmentCase alignAlongPath(const test::RenderFixture& fx, std::size_t i, int frames, const SE3* init = nullptr,
-                             const RotationPrior* rotation_prior = nullptr) {
+                             const RotationPrior* rotation_prior = nullptr, const AlignmentOptions& ao = AlignmentOptions{}) {
   const auto& path = fx.path();
   const std::size_t j = i + static_cast<std::size_t>(frames) * 10;  // 200 Hz samples
   const SE3 T_b_c = fx.rectifier().T_b_rect(0);
   const StereoFrame ref = fx.frame(path[i].T_w_b, 0, i), cur = fx.frame(path[j].T_w_b, 1, j);
   const vision::VisionOptions vo;
-  const AlignmentOptions ao;
   const vision::EdgePyramid ref_pyr = vision::buildEdgePyramid(ref.left, fx.rectifier().rectifiedCamera(), vo);
   const vision::KeyframeDepth depth = vision::computeKeyframeDepth(ref_pyr, ref.right.get(), fx.rectifier().baseline(), vo);
   const vision::EdgePyramid cur_pyr = vision::buildEdgePyramid(cur.left, fx.rectifier().rectifiedCamera(), vo);
   AlignmentCase c;
   c.truth = (path[j].T_w_b * T_b_c).inverse() * (path[i].T_w_b * T_b_c);
-  c.result = alignEdges(depth.points, cur_pyr, init ? *init : SE3(), ao, -1, 0, rotation_prior);
+  c.result = alignEdges(depth, cur_pyr, init ? *init : SE3(), ao, -1, 0, rotation_prior);
   c.reference_points = static_cast<int>(depth.points[0].size());
   return c;
 }
@@ -125,8 +154,9 @@ TEST(EdgeAlignment, OneFrameApartIsAccurate) {
   int n;
   worstErrorAlongPath(1, &t, &r, &n);
   std::printf("one frame apart: worst %.4f m, %.4f deg over %d poses\n", t, r, n);
-  // Issue #5 asks for 5 mm / 0.1 deg; the method achieves 1.9 mm / 0.034 deg
-  // here, so the bounds are tightened to that with a margin for other scenes.
+  // Issue #5 asks for 5 mm / 0.1 deg; the method achieved 1.9 mm / 0.034 deg
+  // here (1.3 mm / 0.024 deg since the normal check and the discontinuity
+  // test), so the bounds are tightened to that with a margin for other scenes.
   EXPECT_GE(n, 5);
   EXPECT_LT(t, 0.003);
   EXPECT_LT(r, 0.06);
@@ -139,14 +169,47 @@ TEST(EdgeAlignment, FiveFramesApartFromIdentity) {
   std::printf("five frames apart from identity: worst %.4f m, %.4f deg over %d poses\n", t, r, n);
   // Issue #5: 2 cm / 0.5 deg. Achieved 5.8 mm / 0.13 deg with reference points
   // on Canny's pixels, 6.9 mm / 0.15 deg with them on the sub-pixel edge (which
-  // lowers the median link error on the EuRoC renders by 11-20 %, but not here):
-  // bounds at half the issue's.
+  // lowers the median link error on the EuRoC renders by 11-20 %, but not here),
+  // 3.8 mm / 0.091 deg with the normal check and the discontinuity test (which
+  // lower it by a further 29 %): bounds at half the issue's.
   EXPECT_GE(n, 5);
   EXPECT_LT(t, 0.01);
   EXPECT_LT(r, 0.25);
 }
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+/// Five frames apart along the path, views with enough reference points:
+/// `variant` (given the true motion) must keep the bounds of
+/// FiveFramesApartFromIdentity, and its mean errors must not exceed those of
+/// `baseline`.
+void expectFiveFramesApartNoWorse(const char* what, const std::function<AlignmentCase(std::size_t)>& baseline,
+                                  const std::function<AlignmentCase(std::size_t, const SE3&)>& variant) {
+  double worst_t = 0.0, worst_r = 0.0, sum[2][2] = {};
+  int n = 0;
+  for (std::size_t i = 500; i + 50 < 2600; i += 260) {
+    const AlignmentCase base = baseline(i);
+    if (base.reference_points < 2000) continue;
+    const AlignmentCase var = variant(i, base.truth);
+    double t, r;
+    errors(base, &t, &r);
+    sum[0][0] += t;
+    sum[0][1] += r;
+    errors(var, &t, &r);
+    sum[1][0] += t;
+    sum[1][1] += r;
+    worst_t = std::max(worst_t, t);
+    worst_r = std::max(worst_r, r);
+    ++n;
+  }
+  std::printf("five frames apart: mean error %.4f m %.4f deg without %s, %.4f m %.4f deg with it; worst with it %.4f m %.4f deg\n",
+              sum[0][0] / n, sum[0][1] / n, what, sum[1][0] / n, sum[1][1] / n, worst_t, worst_r);
+  EXPECT_GE(n, 5);
+  EXPECT_LT(worst_t, 0.01);
+  EXPECT_LT(worst_r, 0.25);
+  EXPECT_LE(sum[1][0], sum[0][0]);
+  EXPECT_LE(sum[1][1], sum[0][1]);
+}
 
 TEST(EdgeAlignment, AStiffRotationPriorHoldsTheRotationFiveFramesApart) {
   // The prior's residual is Log(R_priorᵀ R) with information 1/σ² per level-0
@@ -173,31 +236,71 @@ TEST(EdgeAlignment, ARotationPriorAtTheTruthMakesLinksFiveFramesApartNoWorse) {
   // A prior where a perfect gyroscope puts it (at the truth, σ = 0.05 deg,
   // the default) adds information: the links must keep the bounds of
   // FiveFramesApartFromIdentity and their mean errors must not grow.
-  double worst_t = 0.0, worst_r = 0.0, sum[2][2] = {};
-  int n = 0;
-  for (std::size_t i = 500; i + 50 < 2600; i += 260) {
-    const AlignmentCase free = alignAlongPath(fixture(), i, 5);
-    if (free.reference_points < 2000) continue;
-    const RotationPrior prior{free.truth.so3(), 0.05 * kDeg};
-    const AlignmentCase held = alignAlongPath(fixture(), i, 5, nullptr, &prior);
-    double t, r;
-    errors(free, &t, &r);
-    sum[0][0] += t;
-    sum[0][1] += r;
-    errors(held, &t, &r);
-    sum[1][0] += t;
-    sum[1][1] += r;
-    worst_t = std::max(worst_t, t);
-    worst_r = std::max(worst_r, r);
-    ++n;
+  expectFiveFramesApartNoWorse("the prior", [](std::size_t i) { return alignAlongPath(fixture(), i, 5); },
+                               [](std::size_t i, const SE3& truth) {
+                                 const RotationPrior prior{truth.so3(), 0.05 * kDeg};
+                                 return alignAlongPath(fixture(), i, 5, nullptr, &prior);
+                               });
+}
+
+TEST(EdgeAlignment, AtTheTruthReferenceEdgesMeetEdgesOfTheirOwnNormal) {
+  // The normal check rests on this: at the true pose, the nearest edge of a
+  // reference point is mostly its own edge, whose normal (with the gradient's
+  // sign) the mapped reference normal matches; with the sign flipped, as for
+  // the far side of a thin line, it mostly does not. Five frames apart in the
+  // figure8 room, level 0.
+  const auto& fx = fixture();
+  const SE3 T_b_c = fx.rectifier().T_b_rect(0);
+  const vision::VisionOptions vo;
+  const double min_cos = std::cos(AlignmentOptions{}.max_normal_angle_deg * 3.14159265358979 / 180.0);
+  int tested = 0;
+  for (std::size_t i = 500; i + 50 < 2600; i += 520) {
+    const std::size_t j = i + 50;
+    const StereoFrame ref = fx.frame(fx.path()[i].T_w_b, 0, i), cur = fx.frame(fx.path()[j].T_w_b, 1, j);
+    const vision::EdgePyramid ref_pyr = vision::buildEdgePyramid(ref.left, fx.rectifier().rectifiedCamera(), vo);
+    const vision::KeyframeDepth depth = vision::computeKeyframeDepth(ref_pyr, ref.right.get(), fx.rectifier().baseline(), vo);
+    const vision::EdgePyramid cur_pyr = vision::buildEdgePyramid(cur.left, fx.rectifier().rectifiedCamera(), vo);
+    const SE3 truth = (fx.path()[j].T_w_b * T_b_c).inverse() * (fx.path()[i].T_w_b * T_b_c);
+    const vision::EdgeLevel& level = cur_pyr.levels[0];
+    ASSERT_EQ(depth.normals[0].size(), depth.points[0].size());
+    if (depth.points[0].size() < 2000) continue;  // a nearly blank view, as in worstErrorAlongPath
+    int near = 0, same = 0, flipped = 0;
+    for (std::size_t k = 0; k < depth.points[0].size(); ++k) {
+      const Vec3 P = depth.points[0][k].cast<double>();
+      Vec2 uv;
+      if (!projectWithJacobian(P, truth, level.camera, &uv, nullptr)) continue;
+      if (uv.x() < 2 || uv.y() < 2 || uv.x() > level.camera.width - 3 || uv.y() > level.camera.height - 3) continue;
+      if (level.dt.value(uv.x(), uv.y()) > 1.0f) continue;  // not re-detected here
+      Vec2 e, n;
+      level.dt.nearestLine(uv.x(), uv.y(), &e, &n);
+      const Vec2 n_ref = depth.normals[0][k].cast<double>();
+      ++near;
+      same += mapEdgeNormal(P, n_ref, truth, level.camera).dot(n) >= min_cos;
+      flipped += mapEdgeNormal(P, -n_ref, truth, level.camera).dot(n) >= min_cos;
+    }
+    std::printf("  sample %zu: %d reference points within 1 px of an edge, %.1f %% of them match its normal, %.1f %% with the sign flipped\n",
+                i, near, 100.0 * same / near, 100.0 * flipped / near);
+    ASSERT_GE(near, 500);
+    EXPECT_GT(same, 0.9 * near) << "sample " << i;
+    EXPECT_LT(flipped, 0.1 * near) << "sample " << i;
+    ++tested;
   }
-  std::printf("five frames apart: mean error %.4f m %.4f deg without the prior, %.4f m %.4f deg with it; worst with it %.4f m %.4f deg\n",
-              sum[0][0] / n, sum[0][1] / n, sum[1][0] / n, sum[1][1] / n, worst_t, worst_r);
-  EXPECT_GE(n, 5);
-  EXPECT_LT(worst_t, 0.01);
-  EXPECT_LT(worst_r, 0.25);
-  EXPECT_LE(sum[1][0], sum[0][0]);
-  EXPECT_LE(sum[1][1], sum[0][1]);
+  EXPECT_GE(tested, 3);
+}
+
+TEST(EdgeAlignment, TheNormalCheckMakesLinksFiveFramesApartNoWorse) {
+  // Dropping points whose nearest edge is another edge removes a pull towards
+  // the wrong place: mean errors five frames apart, from identity, must not
+  // grow against the same alignment without the check, and the bounds of
+  // FiveFramesApartFromIdentity hold.
+  expectFiveFramesApartNoWorse(
+      "the normal check",
+      [](std::size_t i) {
+        AlignmentOptions off;
+        off.max_normal_angle_deg = 0.0;
+        return alignAlongPath(fixture(), i, 5, nullptr, nullptr, off);
+      },
+      [](std::size_t i, const SE3&) { return alignAlongPath(fixture(), i, 5); });
 }
 
 TEST(EdgeAlignment, TheSelfCheckRefusesAFitThatPinsOnlyARay) {
@@ -227,8 +330,11 @@ TEST(EdgeAlignment, TheSelfCheckRefusesAFitThatPinsOnlyARay) {
     if ((pixel(P) - centre).norm() <= 8.0) patch.push_back(P);
   ASSERT_GE(patch.size(), 30u);  // alignment's min_points
   const AlignmentOptions ao;
-  const AlignmentResult whole = alignEdges({all}, cur_pyr, truth, ao);
-  const AlignmentResult pinned = alignEdges({patch}, cur_pyr, truth, ao);
+  vision::KeyframeDepth whole_ref, patch_ref;
+  whole_ref.points = {all};
+  patch_ref.points = {patch};
+  const AlignmentResult whole = alignEdges(whole_ref, cur_pyr, truth, ao);
+  const AlignmentResult pinned = alignEdges(patch_ref, cur_pyr, truth, ao);
   std::printf("whole view: %zu points, mean distance %.2f px, translation sigma %.4f m; one patch: %zu points, %.2f px, %.3f m\n",
               all.size(), whole.mean_distance_px, whole.translation_sigma_m, patch.size(), pinned.mean_distance_px,
               pinned.translation_sigma_m);

@@ -19,7 +19,7 @@ std::vector<LoopLink> backLinks(const LoopKeyframe& latest, const std::vector<Lo
     if (!k.data || !latest.data) continue;
     ++stats.attempts;
     const SE3 T_kl = k.T_w_c.inverse() * latest.T_w_c;
-    const tracking::AlignmentResult a = tracking::alignEdges(latest.data->depth.points, k.data->pyramid, T_kl, alignment);
+    const tracking::AlignmentResult a = tracking::alignEdges(latest.data->depth, k.data->pyramid, T_kl, alignment);
     if (!a.self_check_passed) {
       ++stats.self_check_failures;
       continue;

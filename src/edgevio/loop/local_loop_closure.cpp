@@ -75,8 +75,8 @@ std::vector<LoopLink> closeLoops(const LoopKeyframe& latest, const std::vector<L
     // Coarse self check threshold in that level's pixels.
     coarse.self_check_max_mean_distance_px = std::ldexp(o.coarse_max_mean_distance_px, level);
     const SE3 T_nc_init = latest.T_w_c.inverse() * c.k->T_w_c;
-    const tracking::AlignmentResult a = tracking::alignEdges(kc.depth.points, kn.pyramid, T_nc_init, coarse, -1, level);
-    const tracking::AlignmentResult b = tracking::alignEdges(kn.depth.points, kc.pyramid, T_nc_init.inverse(), coarse, -1, level);
+    const tracking::AlignmentResult a = tracking::alignEdges(kc.depth, kn.pyramid, T_nc_init, coarse, -1, level);
+    const tracking::AlignmentResult b = tracking::alignEdges(kn.depth, kc.pyramid, T_nc_init.inverse(), coarse, -1, level);
     const SE3 E = a.T_nr * b.T_nr;
     const bool agree = E.translation().norm() <= o.max_disagreement_m && geometry::angle(E.so3()) * kRadToDeg <= o.max_disagreement_deg;
     if (!a.self_check_passed || !b.self_check_passed || !agree) {
@@ -86,7 +86,7 @@ std::vector<LoopLink> closeLoops(const LoopKeyframe& latest, const std::vector<L
     ++stats.full_attempts;
     tracking::AlignmentOptions full = alignment;
     full.self_check_min_visible_ratio = o.min_visible_ratio;
-    const tracking::AlignmentResult f = tracking::alignEdges(kc.depth.points, kn.pyramid, a.T_nr, full);
+    const tracking::AlignmentResult f = tracking::alignEdges(kc.depth, kn.pyramid, a.T_nr, full);
     if (!f.self_check_passed) continue;
     links.push_back({kc.t_ns, kn.t_ns, f.T_nr, f.covariance});
     ++stats.accepted;

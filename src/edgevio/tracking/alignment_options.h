@@ -14,6 +14,7 @@ struct AlignmentOptions {
   int border_px = 2;                          ///< points must land in [b, W−1−b]x[b, H−1−b] [px]
   int min_points = 30;                        ///< fewer visible points at a level: the level is skipped [-]
   int max_points = 3000;                      ///< at most this many reference points per level, evenly strided; 0 = all [-]
+  double max_normal_angle_deg = 45.0;         ///< finest level: a point whose nearest edge's normal is farther than this from its own (mapped into the current image) gets weight 0; 0: off [deg]
   double self_check_max_mean_distance_px = 5.0;  ///< self check: mean υ at level 0 at most this [px]
   double self_check_min_visible_ratio = 0.5;     ///< self check: at least this fraction of points in the image [-]
   double self_check_max_translation_sigma_m = 0.2;  ///< self check: σ of the translation along its weakest direction at most this (1 level-0 px of edge noise) [m]
@@ -29,6 +30,7 @@ struct AlignmentOptions {
     v("border_px", border_px, "px", "points must project at least this far inside the image");
     v("min_points", min_points, "-", "a level with fewer visible points is skipped");
     v("max_points", max_points, "-", "at most this many reference points per level (even stride); 0 = all");
+    v("max_normal_angle_deg", max_normal_angle_deg, "deg", "finest level: weight 0 for a point whose nearest edge's signed normal is farther than this from its own edge's (0: off)");
     v("self_check_max_mean_distance_px", self_check_max_mean_distance_px, "px", "self check: mean distance at level 0");
     v("self_check_min_visible_ratio", self_check_min_visible_ratio, "-", "self check: fraction of points in the image");
     v("self_check_max_translation_sigma_m", self_check_max_translation_sigma_m, "m",

@@ -21,6 +21,7 @@ std::string AlignmentOptions::validate() const {
   if (border_px < 1 || border_px > 20) return "border_px: in [1, 20]";
   if (min_points < 6) return "min_points: at least 6";
   if (max_points < 0 || (max_points > 0 && max_points < min_points)) return "max_points: 0 (all) or at least min_points";
+  if (!(max_normal_angle_deg >= 0 && max_normal_angle_deg <= 180)) return "max_normal_angle_deg: in [0, 180] (0: off)";
   if (!(self_check_max_mean_distance_px > 0)) return "self_check_max_mean_distance_px: must be > 0";
   if (!(self_check_min_visible_ratio >= 0 && self_check_min_visible_ratio <= 1)) return "self_check_min_visible_ratio: in [0, 1]";
   if (!(self_check_max_translation_sigma_m > 0)) return "self_check_max_translation_sigma_m: must be > 0";
@@ -54,11 +55,21 @@ bool project(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, Vec2*
   return true;
 }
 
+/// The reference edge's normal in the current image, from ∂uv/∂P (Juv's
+/// first three columns): see mapEdgeNormal.
+Vec2 mappedNormal(const Vec3& P, const Eigen::Vector2f& n_ref, const Jacobian26& Juv, const vision::LevelCamera& c) {
+  const Vec3 dP(-P.z() * n_ref.y() / c.fx, P.z() * n_ref.x() / c.fy, 0.0);
+  const Vec2 tau = Juv.leftCols<3>() * dP;
+  const double len = tau.norm();
+  return len > 1e-12 ? Vec2(tau.y() / len, -tau.x() / len) : n_ref.cast<double>();
+}
+
 bool residual(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, const vision::DistanceTransform& dt,
-              int border, double* r, Jacobian16* J, bool point_to_line, double* distance) {
+              int border, double* r, Jacobian16* J, bool point_to_line, double* distance,
+              const Eigen::Vector2f* n_ref = nullptr, double* normal_cos = nullptr) {
   Vec2 uv;
   Jacobian26 Juv;
-  if (!project(P, T, c, &uv, J ? &Juv : nullptr)) return false;
+  if (!project(P, T, c, &uv, J || n_ref ? &Juv : nullptr)) return false;
   if (uv.x() < border || uv.y() < border || uv.x() > c.width - 1 - border || uv.y() > c.height - 1 - border) return false;
   if (point_to_line && dt.hasLines()) {
     if (distance) *distance = dt.value(uv.x(), uv.y());
@@ -66,6 +77,7 @@ bool residual(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, cons
     dt.nearestLine(uv.x(), uv.y(), &e, &n);
     *r = (uv - e).dot(n);
     if (J) *J = n.transpose() * Juv;
+    if (n_ref && normal_cos) *normal_cos = mappedNormal(P, *n_ref, Juv, c).dot(n);
     return true;
   }
   float v, gu, gv;
@@ -80,6 +92,13 @@ bool residual(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, cons
 
 bool projectWithJacobian(const Vec3& P, const SE3& T, const vision::LevelCamera& c, Vec2* uv, Jacobian26* J) {
   return project(P, PoseRt(T), c, uv, J);
+}
+
+Vec2 mapEdgeNormal(const Vec3& P, const Vec2& n_ref, const SE3& T, const vision::LevelCamera& c) {
+  Vec2 uv;
+  Jacobian26 Juv;
+  if (!project(P, PoseRt(T), c, &uv, &Juv)) return n_ref;
+  return mappedNormal(P, n_ref.cast<float>(), Juv, c);
 }
 
 bool edgeResidual(const Vec3& P, const SE3& T, const vision::LevelCamera& c, const vision::DistanceTransform& dt,
@@ -97,8 +116,9 @@ struct LevelStats {
   int considered = 0;  ///< points evaluated (all, or the strided subset)
 };
 
-LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const SE3& T, const vision::EdgeLevel& level,
-                      const AlignmentOptions& o, bool laplacian, bool finest) {
+/// `normals`: the points' edge normals (null, or of another size: none).
+LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector2f>* normals, const SE3& T,
+                      const vision::EdgeLevel& level, const AlignmentOptions& o, bool laplacian, bool finest) {
   LevelStats s;
   // An even stride keeps the points spread over the image (and deterministic).
   const std::size_t stride =
@@ -111,13 +131,20 @@ LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const SE3& T, 
   // The distance field's consistent pull towards edges gives the wide basin
   // on coarse levels; the line residual refines on the finest one.
   const bool p2l = o.residual == "point_to_line" && finest;
+  const bool check_normals = p2l && o.max_normal_angle_deg > 0 && normals && normals->size() == points.size();
+  const double min_cos = std::cos(o.max_normal_angle_deg * kDegToRad);
   for (std::size_t idx = 0; idx < points.size(); idx += stride) {
     const Eigen::Vector3f& pf = points[idx];
     ++s.considered;
-    if (!residual(pf.cast<double>(), Trt, level.camera, level.dt, o.border_px, &r, &J, p2l, &dist)) continue;
+    double normal_cos = 1.0;
+    if (!residual(pf.cast<double>(), Trt, level.camera, level.dt, o.border_px, &r, &J, p2l, &dist,
+                  check_normals ? &(*normals)[idx] : nullptr, &normal_cos))
+      continue;
     // Weights from the distance V: the robust kernel judges how far the point
-    // is from any edge, whichever residual is minimised.
-    const double w = laplacian ? std::exp(-dist) : 1.0 / (1.0 + dist * dist / o.cauchy_c2);
+    // is from any edge, whichever residual is minimised. A nearest edge whose
+    // normal (with its sign) points elsewhere than the reference edge's is
+    // another edge (the other side of a thin line, a crossing edge): weight 0.
+    const double w = normal_cos < min_cos ? 0.0 : laplacian ? std::exp(-dist) : 1.0 / (1.0 + dist * dist / o.cauchy_c2);
     int k = 0;
     for (int i = 0; i < 6; ++i) {
       const double wji = w * J[i];
@@ -135,12 +162,14 @@ LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const SE3& T, 
 
 }  // namespace
 
-AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref, const vision::EdgePyramid& cur,
+AlignmentResult alignEdges(const vision::KeyframeDepth& reference, const vision::EdgePyramid& cur,
                            const SE3& T_init, const AlignmentOptions& o, int coarsest, int finest,
                            const RotationPrior* prior) {
   const auto t0 = std::chrono::steady_clock::now();
   AlignmentResult res;
   const bool laplacian = o.weight == "laplacian";
+  const auto& ref = reference.points;
+  const auto normalsOf = [&](std::size_t l) { return l < reference.normals.size() ? &reference.normals[l] : nullptr; };
   SE3 T = T_init;
   int levels = static_cast<int>(std::min(ref.size(), cur.levels.size()));
   if (coarsest >= 0) levels = std::min(levels, coarsest + 1);
@@ -153,7 +182,7 @@ AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref,
     double best_mean = std::numeric_limits<double>::infinity();
     int stalled = 0;
     for (int it = 0; it < o.max_iterations_per_level; ++it) {
-      const LevelStats s = accumulate(points, T, level, o, laplacian, l == 0);
+      const LevelStats s = accumulate(points, normalsOf(static_cast<std::size_t>(l)), T, level, o, laplacian, l == 0);
       if (s.visible < o.min_points) break;
       const double mean = s.sum_r / s.visible;
       // Near the optimum points switch between neighbouring edges, so steps
@@ -182,14 +211,14 @@ AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& ref,
       if (xi.norm() < o.min_step) break;
     }
     // The last step is evaluated too: it may be the best iterate.
-    const LevelStats last = accumulate(points, T, level, o, laplacian, l == 0);
+    const LevelStats last = accumulate(points, normalsOf(static_cast<std::size_t>(l)), T, level, o, laplacian, l == 0);
     if (last.visible < o.min_points || last.sum_r / last.visible > best_mean) T = best;
   }
 
   // Final figures at the finest level: self check, covariance.
   if (static_cast<int>(ref.size()) > finest && static_cast<int>(cur.levels.size()) > finest) {
     const auto f = static_cast<std::size_t>(finest);
-    const LevelStats s = accumulate(ref[f], T, cur.levels[f], o, laplacian, finest == 0);
+    const LevelStats s = accumulate(ref[f], normalsOf(f), T, cur.levels[f], o, laplacian, finest == 0);
     res.points_used = s.visible;
     res.visible_ratio = s.considered == 0 ? 0.0 : static_cast<double>(s.visible) / static_cast<double>(s.considered);
     res.mean_distance_px = s.visible > 0 ? s.sum_r / s.visible : std::numeric_limits<double>::infinity();

@@ -10,6 +10,12 @@
 // Gauss-Newton on SE(3) with right perturbations T ← T·exp(ξ), ξ = (δp, δθ):
 //   J_i = ∇V(u)ᵀ · ∂π/∂P' · R·[I | −hat(P_i)],   (JᵀWJ) ξ = −JᵀWυ   (eqs 9-11)
 // coarse to fine over the pyramid, keeping the best iterate per level.
+// Deviation (AlignmentOptions::max_normal_angle_deg): on the finest level a
+// point whose nearest edge has a normal (with the gradient's sign) more than
+// 45° from its own edge's normal mapped into the current image
+// (mapEdgeNormal) gets weight 0 for that iteration: that edge is another one,
+// the far side of a thin line or a crossing edge (the association test of
+// oriented nearest-neighbour fields, Zhou et al., Canny-VO, 2018).
 // Deviation (IMU modes): a rotation prior from the gyroscope adds
 // ½‖Log(R_priorᵀ R)‖²/σ² to f; far scenes leave rotation and lateral
 // translation nearly interchangeable, and the gyroscope tells them apart. The
@@ -22,6 +28,7 @@
 #include "edgevio/geometry/se3.h"
 #include "edgevio/tracking/alignment_options.h"
 #include "edgevio/vision/edge_pyramid.h"
+#include "edgevio/vision/keyframe_depth.h"
 
 namespace edgevio::tracking {
 
@@ -40,6 +47,13 @@ bool projectWithJacobian(const Vec3& P, const geometry::SE3& T, const vision::Le
 bool edgeResidual(const Vec3& P, const geometry::SE3& T, const vision::LevelCamera& cam,
                   const vision::DistanceTransform& dt, int border, double* r, Jacobian16* J,
                   bool point_to_line = false, double* distance = nullptr);
+
+/// The unit normal, in the current image, of the edge through P whose normal
+/// in the keyframe's image is n_ref (the signed grey-level gradient
+/// direction): the edge's tangent τ = (−n_y, n_x), one keyframe pixel long
+/// at P's depth, maps through ∂uv/∂P to τ', whose normal (τ'_y, −τ'_x)/|τ'|
+/// keeps the gradient's sign. n_ref itself when P is behind the camera.
+Vec2 mapEdgeNormal(const Vec3& P, const Vec2& n_ref, const geometry::SE3& T, const vision::LevelCamera& cam);
 
 struct AlignmentResult {
   geometry::SE3 T_nr;
@@ -65,7 +79,7 @@ struct RotationPrior {
 /// current pyramid, starting from T_nr_init, from level `coarsest` (−1: the
 /// coarsest available) down to level `finest`. The self check and covariance
 /// are evaluated at `finest`, the distance threshold scaled to its pixels (2^−finest).
-AlignmentResult alignEdges(const std::vector<std::vector<Eigen::Vector3f>>& reference_points,
+AlignmentResult alignEdges(const vision::KeyframeDepth& reference,
                            const vision::EdgePyramid& current, const geometry::SE3& T_nr_init,
                            const AlignmentOptions& options, int coarsest = -1, int finest = 0,
                            const RotationPrior* rotation_prior = nullptr);

@@ -57,9 +57,9 @@ AlignmentResult EdgeTracker::alignToKeyframe(const vision::EdgePyramid& pyr, con
       rotation_prior = RotationPrior{R_nr, std::sqrt(s0 * s0 + s1 * s1)};
     }
   const RotationPrior* prior = rotation_prior ? &*rotation_prior : nullptr;
-  AlignmentResult r = alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_, -1, 0, prior);
+  AlignmentResult r = alignEdges(keyframe_->data->depth, pyr, T_nr_init, alignment_, -1, 0, prior);
   const auto realignFine = [&] {
-    return alignEdges(keyframe_->data->depth.points, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1, 0, prior);
+    return alignEdges(keyframe_->data->depth, pyr, T_nr_init, alignment_, tracking_.gyro_check_realign_levels - 1, 0, prior);
   };
   // Gyro check: the gyroscope's rotation over one frame is accurate to a
   // fraction of a degree; an alignment far from it has converged to a wrong

@@ -100,6 +100,7 @@ KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right
     const EdgeLevel& level = left.levels[l];
     const LevelCamera& c = level.camera;
     std::vector<Eigen::Vector3f> pts;
+    std::vector<Eigen::Vector2f> normals;
     const bool subpixel = level.dt.hasLines();
     for (int v = 0; v < level.edges.rows && v < rho.rows; ++v) {
       const std::uint8_t* e = level.edges.ptr<std::uint8_t>(v);
@@ -114,11 +115,13 @@ KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right
           const double d = (Vec2(u, v) - edge).dot(n);
           x -= d * n.x();
           y -= d * n.y();
+          normals.emplace_back(static_cast<float>(n.x()), static_cast<float>(n.y()));
         }
         pts.emplace_back(z * static_cast<float>((x - c.cx) / c.fx), z * static_cast<float>((y - c.cy) / c.fy), z);
       }
     }
     out.points.push_back(std::move(pts));
+    out.normals.push_back(std::move(normals));
   }
   return out;
 }

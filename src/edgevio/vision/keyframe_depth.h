@@ -47,6 +47,10 @@ namespace edgevio::vision {
 struct KeyframeDepth {
   /// Per level: reference points in the keyframe's rectified left camera frame [m].
   std::vector<std::vector<Eigen::Vector3f>> points;
+  /// Per level: the unit normal (grey-level gradient direction) of each
+  /// point's edge in the keyframe's image, where the level has edge lines
+  /// (level 0); empty on the other levels.
+  std::vector<std::vector<Eigen::Vector2f>> normals;
   double bm_ms = 0.0;
 };
 
