@@ -6,6 +6,7 @@
 
 #include "edgevio/cli/commands.h"
 #include "edgevio/config/config.h"
+#include "edgevio/pipeline/run_writer.h"
 
 int main(int argc, char** argv) {
   using namespace edgevio;
@@ -13,8 +14,10 @@ int main(int argc, char** argv) {
                ": edge-alignment stereo visual-inertial odometry for aggressive motion"};
   app.require_subcommand(0, 1);
   app.set_version_flag("--version", EDGEVIO_VERSION);
-  bool print_config = false;
+  bool print_config = false, print_config_reference = false, print_outputs_reference = false;
   app.add_flag("--print-config", print_config, "Print the default configuration (every parameter, documented) and exit");
+  app.add_flag("--print-config-reference", print_config_reference, "Print the configuration reference (Markdown) and exit");
+  app.add_flag("--print-outputs-reference", print_outputs_reference, "Print the reference of a run folder's files (Markdown) and exit");
 
   cli::InfoArgs info;
   auto* info_cmd = app.add_subcommand("info", "Describe an EuRoC/ASL dataset folder as one JSON object");
@@ -25,8 +28,7 @@ int main(int argc, char** argv) {
   auto* run_cmd = app.add_subcommand("run", "Estimate a trajectory from a dataset");
   run_cmd->add_option("dataset", run.dataset, "Dataset folder (holding mav0/)")->required();
   run_cmd->add_option("--out", run.out, "Output folder")->required();
-  run_cmd->add_option("--mode", run.mode, "edge+imu+loop (default, the full system) | edge+imu | edge+loop | edge-only")
-      ->check(CLI::IsMember({"edge-only", "edge+loop", "edge+imu", "edge+imu+loop"}));
+  run_cmd->add_option("--mode", run.mode, "edge+imu+loop (default, the full system) | edge+imu | edge+loop | edge-only");
   run_cmd->add_option("--config", run.config, "Config file (YAML)");
   run_cmd->add_option("--skip", run.skip, "Keep every (K+1)-th stereo frame (the IMU is untouched)");
   run_cmd->add_flag("--realtime", run.realtime, "Play the dataset at sensor rate, dropping frames when behind");
@@ -81,6 +83,14 @@ int main(int argc, char** argv) {
 
   if (print_config) {
     writeConfig(std::cout, Config{});
+    return cli::kExitOk;
+  }
+  if (print_config_reference) {
+    writeConfigReference(std::cout);
+    return cli::kExitOk;
+  }
+  if (print_outputs_reference) {
+    pipeline::writeOutputsReference(std::cout);
     return cli::kExitOk;
   }
 

@@ -98,15 +98,6 @@ void BM_StereoBlockMatching(benchmark::State& state) {
 }
 BENCHMARK(BM_StereoBlockMatching)->Unit(benchmark::kMillisecond);
 
-void BM_StereoBlockMatchingFullResolution(benchmark::State& state) {
-  const Data& d = data();
-  vision::VisionOptions vo;
-  vo.stereo_full_resolution = true;
-  for (auto _ : state) benchmark::DoNotOptimize(vision::computeKeyframeDepth(d.ref_pyr, d.ref_right, d.fx.rect->baseline(), vo));
-  state.SetLabel("+ StereoBM 128 disparities, block 21, 752x480, pooled and cross-checked (per keyframe; vision.stereo_full_resolution)");
-}
-BENCHMARK(BM_StereoBlockMatchingFullResolution)->Unit(benchmark::kMillisecond);
-
 void BM_EdgeAlignment(benchmark::State& state) {
   const Data& d = data();
   const tracking::AlignmentOptions ao;

@@ -18,7 +18,7 @@
 
 #include "edgevio/config/config.h"
 #include "edgevio/pipeline/component_times.h"
-#include "edgevio/pipeline/offline_run.h"
+#include "edgevio/pipeline/run.h"
 #include "edgevio/sim/simulator.h"
 
 using namespace edgevio;
@@ -39,6 +39,11 @@ std::string machine() {
 int main(int argc, char** argv) {
   std::string dataset = argc > 1 ? argv[1] : "";
   const std::string mode = argc > 2 ? argv[2] : "edge+imu";
+  const std::optional<pipeline::Mode> parsed_mode = pipeline::parseMode(mode);
+  if (!parsed_mode) {
+    std::fprintf(stderr, "error: unknown mode '%s': use %s\n", mode.c_str(), pipeline::kModeNames);
+    return 2;
+  }
   const fs::path work = fs::temp_directory_path() / "edgevio_pipeline_bench";
   if (dataset.empty()) {
     dataset = (work / "aggressive").string();
@@ -55,7 +60,7 @@ int main(int argc, char** argv) {
   const std::string run_dir = (work / ("run-" + mode)).string();
   pipeline::RunSummary s;
   try {
-    s = pipeline::runOffline({dataset, run_dir, mode, 0}, Config{});
+    s = pipeline::run({dataset, run_dir, *parsed_mode, 0, false}, Config{});
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
@@ -64,7 +69,8 @@ int main(int argc, char** argv) {
               dataset.c_str(), machine().c_str(), s.frames, s.keyframes, s.failed ? ("FAILED: " + s.failure).c_str() : "tracking ok");
   std::printf("| component | per | mean [ms] | median [ms] | p90 [ms] | count |\n|---|---|---:|---:|---:|---:|\n");
   for (const pipeline::ComponentTime& c : pipeline::readComponentTimes(run_dir + "/frames.csv"))
-    std::printf("| %s | %s | %.2f | %.2f | %.2f | %zu |\n", c.component.c_str(), c.per.c_str(), c.mean_ms, c.median_ms,
+    if (c.count > 0)
+      std::printf("| %s | %s | %.2f | %.2f | %.2f | %zu |\n", c.component.c_str(), c.per.c_str(), c.mean_ms, c.median_ms,
                 c.p90_ms, c.count);
   std::printf("\nsequence %.1f s, wall %.1f s, real-time factor %.2f (three threads on this machine's cores: component times include their contention; run folder %s)\n", s.duration_s, s.wall_s,
               s.realtime_factor, run_dir.c_str());

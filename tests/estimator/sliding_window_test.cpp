@@ -81,9 +81,9 @@ Window syntheticWindow(std::vector<NavState>* truth) {
     init.p_w += v3(0.05);
     init.R_w_b = x.R_w_b * SO3::exp(v3(0.02));
     init.v_w += v3(0.05);
-    w.states.push_back({imu.samples[idx].t_ns, init, k == 0});
+    w.states.push_back({imu.samples[idx].t_ns, init});
     if (k > 0) {
-      imu::Preintegration p(Vec3::Zero(), Vec3::Zero(), camera::ImuNoise{});
+      imu::Preintegration p(Vec3::Zero(), Vec3::Zero(), imu::ImuNoise{});
       for (std::size_t m = idx - step; m < idx; ++m)
         p.integrate(static_cast<double>(imu.samples[m + 1].t_ns - imu.samples[m].t_ns) * 1e-9, imu.samples[m].accel,
                     imu.samples[m].gyro, imu.samples[m + 1].accel, imu.samples[m + 1].gyro);
@@ -104,6 +104,7 @@ Window syntheticWindow(std::vector<NavState>* truth) {
       w.visual.push_back({r, k, l});
     }
   // Anchor state 0 with a strong prior (the gauge of this test problem).
+  w.gauge = Gauge::kNone;
   w.prior.states = {0};
   w.prior.x0 = {(*truth)[0]};
   w.prior.H = Eigen::MatrixXd::Identity(15, 15) * 1e8;
@@ -111,11 +112,10 @@ Window syntheticWindow(std::vector<NavState>* truth) {
   return w;
 }
 
-SolverOptions exactOptions() {
-  SolverOptions o;
+EstimatorOptions exactOptions() {
+  EstimatorOptions o;
   o.max_iterations = 50;
-  o.min_step = 1e-12;
-  o.fix_gauge = false;  // the test prior fixes the gauge
+  o.first_estimate_jacobians = false;
   o.huber_translation_m = o.huber_rotation_deg = 1e9;  // Huber off: a pure least-squares problem
   return o;
 }
@@ -134,7 +134,7 @@ TEST(SlidingWindow, SolveReachesTheNoiseLevel) {
 void expectMarginalizationEquivalent(std::size_t removed, bool first_estimate_jacobians = false) {
   std::vector<NavState> truth;
   Window full = syntheticWindow(&truth);
-  SolverOptions o = exactOptions();
+  EstimatorOptions o = exactOptions();
   o.first_estimate_jacobians = first_estimate_jacobians;
   solve(&full, o);  // converged full problem
   Window reduced = full;
@@ -188,7 +188,8 @@ TEST(SlidingWindow, FirstEstimateJacobiansKeepTheGaugeOutOfThePrior) {
     std::vector<NavState> truth;
     Window w = syntheticWindow(&truth);
     w.prior = MarginalPrior{};  // no anchor: the gauge is free
-    SolverOptions o;
+    w.gauge = Gauge::kPositionYaw;
+    EstimatorOptions o;
     o.gauge_prior = true;
     o.first_estimate_jacobians = fej;
     o.max_iterations = 3;
@@ -204,14 +205,15 @@ TEST(SlidingWindow, FirstEstimateJacobiansKeepTheGaugeOutOfThePrior) {
   EXPECT_GT(leak[0], 100 * leak[1]);
 }
 
-class Gauge : public ::testing::TestWithParam<bool> {};
+class GaugeHold : public ::testing::TestWithParam<bool> {};
 
-TEST_P(Gauge, KeepsTheOldestPositionAndYaw) {
+TEST_P(GaugeHold, KeepsTheOldestPositionAndYaw) {
   std::vector<NavState> truth;
   Window w = syntheticWindow(&truth);
   w.prior = MarginalPrior{};  // no anchor: the gauge must hold it
+  w.gauge = Gauge::kPositionYaw;
   const NavState before = w.states.front().x;
-  SolverOptions o;
+  EstimatorOptions o;
   o.gauge_prior = GetParam();
   // Re-anchoring is exact; the stiff prior leaves a step of about
   // gradient / stiffness, 1e-3 of the unconstrained one, in those directions.
@@ -238,7 +240,7 @@ TEST_P(Gauge, KeepsTheOldestPositionAndYaw) {
   EXPECT_GT(geometry::angle(before.R_w_b.inverse() * after.R_w_b), 1e-4);
 }
 
-INSTANTIATE_TEST_SUITE_P(SlidingWindow, Gauge, ::testing::Values(false, true),
+INSTANTIATE_TEST_SUITE_P(SlidingWindow, GaugeHold, ::testing::Values(false, true),
                          [](const auto& param_info) { return param_info.param ? std::string("Prior") : std::string("Reanchoring"); });
 
 }  // namespace
@@ -253,7 +255,7 @@ TEST(ExternalCheck, AcceptsTrueLinksAndRejectsACorruptedOne) {
   int accepted = 0;
   for (const InertialLink& l : w.inertial) {
     // The IMU prediction from the true state r (noisy IMU, 0.1 s).
-    const NavState pred = predictState(truth[l.i], l.pre);
+    const NavState pred = imu::predictState(truth[l.i], l.pre);
     const SE3 C_r = SE3(truth[l.i].R_w_b, truth[l.i].p_w) * w.T_b_c, C_n = SE3(truth[l.j].R_w_b, truth[l.j].p_w) * w.T_b_c;
     const SE3 true_link = C_n.inverse() * C_r;
     const ExternalCheckResult good = externalCheck(true_link, truth[l.i], pred, w.T_b_c, 3.0, 0.2);

@@ -10,11 +10,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <set>
 
-#include "edgevio/io/calibration_io.h"
-#include "edgevio/sim/imu_synth.h"
+#include "common/imu_scenario.h"
 #include "edgevio/sim/random.h"
-#include "edgevio/sim/trajectory_source.h"
 
 namespace edgevio::estimator {
 namespace {
@@ -23,28 +22,7 @@ using geometry::SE3;
 using geometry::SO3;
 using imu::NavState;
 
-constexpr double kPi = 3.14159265358979323846;
-
-struct Scenario {
-  camera::StereoRig rig = io::eurocDefaultRig();
-  sim::SplineTrajectory spline;
-  sim::SynthesizedImu imu;
-  explicit Scenario(const std::string& name) {
-    const io::Trajectory s = sim::scenarioSamples(name, 14.0, 1.0, rig.T_b_c[0]);
-    spline = sim::fitSpline(s, sim::kScenarioStartNs, sim::kScenarioStartNs + 13000000000LL, 0.05, 0.1, name);
-    sim::ImuSynthOptions o;  // noise and bias random walk on (EuRoC densities)
-    imu = sim::synthesizeImu(spline, spline.beginNs(), spline.endNs(), o, 21);
-  }
-  NavState truth(std::int64_t t) const {
-    const sim::KinematicState k = spline.evaluate(t);
-    NavState x;
-    x.R_w_b = k.T_w_b.so3();
-    x.p_w = k.T_w_b.translation();
-    x.v_w = k.v_w;
-    return x;
-  }
-  SE3 camera(const NavState& x) const { return SE3(x.R_w_b, x.p_w) * rig.T_b_c[0]; }
-};
+using Scenario = test::ImuScenario;
 
 EstimatorOptions testOptions() {
   EstimatorOptions o;
@@ -53,6 +31,10 @@ EstimatorOptions testOptions() {
   o.gyro_bias_walk_inflation = 1.0;
   o.accel_bias_walk_inflation = 1.0;
   return o;
+}
+
+KeyframeQuery keyframesOf(const std::set<std::int64_t>& keyframes, std::int64_t current) {
+  return {current, [&keyframes](std::int64_t t) { return keyframes.count(t) > 0; }};
 }
 
 struct RunStats {
@@ -66,12 +48,12 @@ struct RunStats {
 /// noise σ_t, σ_r, the keyframe pose kept by the estimator.
 RunStats drive(const Scenario& sc, double sigma_t, double sigma_r, int frames) {
   const std::int64_t dt = 50000000, t0 = sc.spline.beginNs() + 1000000000LL;
-  VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0]);
+  VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0], true);
   // The test's gauge and initial condition: start on the true pose and
   // velocity (what a static start or visual-inertial alignment provides);
   // the biases are unknown (zero).
   est.initialize(t0, sc.truth(t0), true, true);
-  est.markKeyframe(t0);
+  std::set<std::int64_t> keyframes = {t0};
   std::int64_t keyframe = t0;
   sim::Rng rng(5);
   const auto v3 = [&](double s) -> Vec3 { return Vec3(rng.gaussian(), rng.gaussian(), rng.gaussian()) * s; };
@@ -89,22 +71,22 @@ RunStats drive(const Scenario& sc, double sigma_t, double sigma_r, int frames) {
     const auto check = est.offerTrackingLink(keyframe, T_nr, cov);
     EXPECT_TRUE(check && check->accepted) << "frame " << f;
     if (f % 6 == 0) {
-      est.markKeyframe(t);
+      keyframes.insert(t);
       keyframe = t;
     }
-    const EstimatorUpdate u = est.optimize(true, keyframe);
-    st.front += u.marginalized == "front";
-    st.back += u.marginalized == "back";
+    const EstimatorUpdate u = est.optimize(true, keyframesOf(keyframes, keyframe), SE3());
+    st.front += u.marginalized == Marginalization::kFront;
+    st.back += u.marginalized == Marginalization::kBack;
     st.resets += !u.reset_reason.empty();
-    if (u.keyframe_left_window) {
-      est.markKeyframe(t);
+    if (u.marginalized_t_ns == keyframe) {
+      keyframes.insert(t);
       keyframe = t;
     }
     st.max_states = std::max(st.max_states, static_cast<int>(est.window().states.size()));
     const NavState truth = sc.truth(t);
     st.max_position_error = std::max(st.max_position_error, (est.newest().p_w - truth.p_w).norm());
     st.max_rotation_error_deg =
-        std::max(st.max_rotation_error_deg, geometry::angle(est.newest().R_w_b.inverse() * truth.R_w_b) * 180 / kPi);
+        std::max(st.max_rotation_error_deg, geometry::angle(est.newest().R_w_b.inverse() * truth.R_w_b) * kRadToDeg);
     if (!est.stateAt(keyframe)) st.keyframes_survived = false;
   }
   const std::size_t k = static_cast<std::size_t>((t0 + frames * dt - sc.imu.samples.front().t_ns) / 5000000);
@@ -141,7 +123,7 @@ TEST(VioEstimator, InflatesWhiteNoiseAndEachBiasWalkByItsOwnFactor) {
   o.imu_noise_inflation = 3.0;
   o.gyro_bias_walk_inflation = 1.5;
   o.accel_bias_walk_inflation = 7.0;
-  VioEstimator est(o, sc.rig.imu, sc.rig.T_b_c[0]);
+  VioEstimator est(o, sc.rig.imu, sc.rig.T_b_c[0], true);
   const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL, t1 = t0 + 500000000;
   est.initialize(t0, sc.truth(t0), false, false);
   const auto pre = est.preintegrateTo(sc.imu.samples, t1);
@@ -149,7 +131,7 @@ TEST(VioEstimator, InflatesWhiteNoiseAndEachBiasWalkByItsOwnFactor) {
   // A bias is a pure random walk, so its block of the covariance is the
   // inflated density squared times the interval, whatever the motion.
   const double T = pre->deltaT();
-  const camera::ImuNoise& n = sc.rig.imu;
+  const imu::ImuNoise& n = sc.rig.imu;
   const auto& P = pre->covariance();
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(P(imu::kBa + k, imu::kBa + k), std::pow(7.0 * n.accel_random_walk, 2) * T, 1e-12);
@@ -157,7 +139,7 @@ TEST(VioEstimator, InflatesWhiteNoiseAndEachBiasWalkByItsOwnFactor) {
   }
   // The white noise enters the motion blocks: the same covariance as
   // preintegrating with the densities scaled by hand.
-  camera::ImuNoise scaled = n;
+  imu::ImuNoise scaled = n;
   scaled.accel_noise_density *= 3.0;
   scaled.gyro_noise_density *= 3.0;
   scaled.accel_random_walk *= 7.0;
@@ -173,14 +155,14 @@ TEST(VioEstimator, InflatesWhiteNoiseAndEachBiasWalkByItsOwnFactor) {
 
 TEST(VioEstimator, ExternalCheckDropsACorruptedLink) {
   const Scenario sc("figure8");
-  VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0]);
+  VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0], true);
   const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL, t1 = t0 + 50000000;
   est.initialize(t0, sc.truth(t0), false, false);
   est.addState(t1, *est.preintegrateTo(sc.imu.samples, t1));
   const SE3 T_true = sc.camera(sc.truth(t1)).inverse() * sc.camera(sc.truth(t0));
   const Mat6 cov = Mat6::Identity() * 1e-6;
   // 10 deg and 30 cm off: far outside the 3 deg / 0.2 m gate.
-  const SE3 corrupted = T_true * SE3(SO3::exp(Vec3(0, 10 * kPi / 180, 0)), Vec3(0.3, 0, 0));
+  const SE3 corrupted = T_true * SE3(SO3::exp(Vec3(0, 10 * kDegToRad, 0)), Vec3(0.3, 0, 0));
   const auto bad = est.offerTrackingLink(t0, corrupted, cov);
   ASSERT_TRUE(bad.has_value());
   EXPECT_FALSE(bad->accepted);
@@ -205,10 +187,10 @@ TEST(VioEstimator, DefaultExternalCheckPassesTrueLinksAndStopsASlowlyDriftingAli
   // and refuse 1.5 deg.
   const Scenario sc("figure8");
   const EstimatorOptions defaults;
-  VioEstimator est(defaults, sc.rig.imu, sc.rig.T_b_c[0]);
+  VioEstimator est(defaults, sc.rig.imu, sc.rig.T_b_c[0], true);
   const std::int64_t dt = 50000000, t0 = sc.spline.beginNs() + 1000000000LL;
   est.initialize(t0, sc.truth(t0), true, true);
-  est.markKeyframe(t0);
+  const std::set<std::int64_t> keyframes = {t0};
   const Mat6 cov = Mat6::Identity() * 1e-6;
   const auto trueLink = [&](std::int64_t t) { return sc.camera(sc.truth(t)).inverse() * sc.camera(sc.truth(t0)); };
   double worst_deg = 0.0;
@@ -219,12 +201,12 @@ TEST(VioEstimator, DefaultExternalCheckPassesTrueLinksAndStopsASlowlyDriftingAli
     ASSERT_TRUE(check.has_value());
     EXPECT_TRUE(check->accepted) << "frame " << f;
     worst_deg = std::max(worst_deg, check->rotation_deg);
-    est.optimize(true, t0);
+    est.optimize(true, keyframesOf(keyframes, t0), SE3());
   }
   EXPECT_LT(worst_deg, defaults.external_check_rotation_deg / 5.0);
   const std::int64_t t = t0 + 21 * dt;
   est.addState(t, *est.preintegrateTo(sc.imu.samples, t));
-  const auto drifted = est.offerTrackingLink(t0, trueLink(t) * SE3(SO3::exp(Vec3(1.5 * kPi / 180, 0, 0)), Vec3::Zero()), cov);
+  const auto drifted = est.offerTrackingLink(t0, trueLink(t) * SE3(SO3::exp(Vec3(1.5 * kDegToRad, 0, 0)), Vec3::Zero()), cov);
   ASSERT_TRUE(drifted.has_value());
   EXPECT_FALSE(drifted->accepted);
 }
@@ -236,22 +218,22 @@ TEST(VioEstimator, LoopCheckRefusesALoopLinkFarFromTheWindowsEstimate) {
   // trajectory jumped by 23 cm. The other 91 loop links of that run were
   // within 6 cm and 0.5 deg of it.
   const Scenario sc("figure8");
-  VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0]);
+  VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0], true);
   const std::int64_t dt = 50000000, t0 = sc.spline.beginNs() + 1000000000LL;
   est.initialize(t0, sc.truth(t0), true, true);
-  est.markKeyframe(t0);
+  const std::set<std::int64_t> keyframes = {t0};
   const Mat6 cov = Mat6::Identity() * 1e-6;
   for (int f = 1; f <= 10; ++f) {
     const std::int64_t t = t0 + f * dt;
     est.addState(t, *est.preintegrateTo(sc.imu.samples, t));
     ASSERT_TRUE(est.offerTrackingLink(t0, sc.camera(sc.truth(t)).inverse() * sc.camera(sc.truth(t0)), cov));
-    est.optimize(true, t0);
+    est.optimize(true, keyframesOf(keyframes, t0), SE3());
   }
   const std::int64_t ta = t0 + 3 * dt, tb = t0 + 10 * dt;
   ASSERT_TRUE(est.stateAt(ta) && est.stateAt(tb));
   const SE3 T_true = sc.camera(sc.truth(tb)).inverse() * sc.camera(sc.truth(ta));
   const std::size_t links = est.window().visual.size();
-  const SE3 wrong = T_true * SE3(SO3::exp(Vec3(0, 1.4 * kPi / 180, 0)), Vec3(0.16, 0, 0));
+  const SE3 wrong = T_true * SE3(SO3::exp(Vec3(0, 1.4 * kDegToRad, 0)), Vec3(0.16, 0, 0));
   EXPECT_FALSE(est.addLoopLink(ta, tb, wrong, cov));
   EXPECT_EQ(est.window().visual.size(), links);
   // A correction of a few centimetres, what loop closure is for, enters.
@@ -261,11 +243,11 @@ TEST(VioEstimator, LoopCheckRefusesALoopLinkFarFromTheWindowsEstimate) {
 
 TEST(VioEstimator, NoticesGapsAndBlowUps) {
   const Scenario sc("figure8");
-  VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0]);
+  VioEstimator est(testOptions(), sc.rig.imu, sc.rig.T_b_c[0], true);
   const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL;
   est.initialize(t0, sc.truth(t0), false, false);
   // A 0.2 s hole in the IMU stream: no preintegration across it.
-  std::vector<io::ImuSample> gappy;
+  std::vector<imu::ImuSample> gappy;
   for (const auto& s : sc.imu.samples)
     if (s.t_ns < t0 + 20000000 || s.t_ns > t0 + 220000000) gappy.push_back(s);
   EXPECT_FALSE(est.preintegrateTo(gappy, t0 + 250000000).has_value());
@@ -273,13 +255,20 @@ TEST(VioEstimator, NoticesGapsAndBlowUps) {
   EXPECT_FALSE(est.preintegrateTo(sc.imu.samples, sc.imu.samples.back().t_ns + 1).has_value());
   // A saturated accelerometer (1000 m/s² for 0.1 s): the speed estimate blows
   // up, and the estimator says so instead of going on.
-  std::vector<io::ImuSample> wild = sc.imu.samples;
+  std::vector<imu::ImuSample> wild = sc.imu.samples;
   for (auto& s : wild)
     if (s.t_ns > t0 && s.t_ns <= t0 + 100000000) s.accel = Vec3(1000, 0, 0);
   est.addState(t0 + 100000000, *est.preintegrateTo(wild, t0 + 100000000));
-  const EstimatorUpdate u = est.optimize(false, t0);
+  const std::set<std::int64_t> keyframes = {t0};
+  const EstimatorUpdate u = est.optimize(false, keyframesOf(keyframes, t0), SE3());
   EXPECT_FALSE(u.reset_reason.empty());
   std::printf("blow-up noticed: %s\n", u.reset_reason.c_str());
+  // ... and restarts its window at the newest state, at the pose it was
+  // given, with the implausible speed (100 m/s) reset to zero.
+  ASSERT_EQ(est.window().states.size(), 1u);
+  EXPECT_EQ(est.newestTime(), t0 + 100000000);
+  EXPECT_TRUE(est.newest().v_w.isZero());
+  EXPECT_TRUE(est.newest().p_w.isZero());
 }
 
 }  // namespace

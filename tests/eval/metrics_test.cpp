@@ -37,7 +37,7 @@ io::Trajectory transformed(const io::Trajectory& in, const Similarity& S) {
   return out;
 }
 
-EvalOptions withAlignment(const std::string& a) {
+EvalOptions withAlignment(AlignmentKind a) {
   EvalOptions o;
   o.alignment = a;
   return o;
@@ -58,12 +58,12 @@ TEST(Metrics, ConstantOffsetIsRemovedByAlignmentAndMeasuredWithout) {
   Similarity offset;
   offset.T = SE3(SO3(), Vec3(0.3, -0.4, 1.2));  // |offset| = 1.3 m
   const io::Trajectory est = transformed(gt, offset);
-  const EvalResult none = evaluate(gt, est, withAlignment("none"));
+  const EvalResult none = evaluate(gt, est, withAlignment(AlignmentKind::kNone));
   EXPECT_NEAR(none.ate_rmse_m, 1.3, 1e-9);
   EXPECT_NEAR(none.ate_max_m, 1.3, 1e-9);
   EXPECT_NEAR(none.ate_median_m, 1.3, 1e-9);
-  EXPECT_LT(evaluate(gt, est, withAlignment("se3")).ate_rmse_m, 1e-9);
-  EXPECT_LT(evaluate(gt, est, withAlignment("posyaw")).ate_rmse_m, 1e-9);
+  EXPECT_LT(evaluate(gt, est, withAlignment(AlignmentKind::kSe3)).ate_rmse_m, 1e-9);
+  EXPECT_LT(evaluate(gt, est, withAlignment(AlignmentKind::kPosYaw)).ate_rmse_m, 1e-9);
   // Relative metrics ignore a global offset.
   EXPECT_LT(none.are_trans_m_per_m, 1e-9);
 }
@@ -74,23 +74,23 @@ TEST(Metrics, KnownScaleIsRecoveredBySim3Only) {
   S.scale = 1.25;
   S.T = SE3(SO3::exp(Vec3(0.2, -0.1, 0.7)), Vec3(1, 2, 3));
   const io::Trajectory est = transformed(gt, S);
-  const EvalResult sim3 = evaluate(gt, est, withAlignment("sim3"));
+  const EvalResult sim3 = evaluate(gt, est, withAlignment(AlignmentKind::kSim3));
   EXPECT_LT(sim3.ate_rmse_m, 1e-9);
   EXPECT_NEAR(sim3.transform.scale, 1.0 / 1.25, 1e-12);
-  EXPECT_GT(evaluate(gt, est, withAlignment("se3")).ate_rmse_m, 0.1);
+  EXPECT_GT(evaluate(gt, est, withAlignment(AlignmentKind::kSe3)).ate_rmse_m, 0.1);
 }
 
 TEST(Metrics, YawRotationIsRemovedByPosYawButNotRollPitch) {
   const io::Trajectory gt = loop(30);
   Similarity yaw;
   yaw.T = SE3(SO3::exp(Vec3(0, 0, 0.8)), Vec3(0.5, 0.1, -0.2));
-  EXPECT_LT(evaluate(gt, transformed(gt, yaw), withAlignment("posyaw")).ate_rmse_m, 1e-9);
-  EXPECT_LT(evaluate(gt, transformed(gt, yaw), withAlignment("se3")).ate_rmse_m, 1e-9);
-  EXPECT_GT(evaluate(gt, transformed(gt, yaw), withAlignment("none")).ate_rmse_m, 0.5);
+  EXPECT_LT(evaluate(gt, transformed(gt, yaw), withAlignment(AlignmentKind::kPosYaw)).ate_rmse_m, 1e-9);
+  EXPECT_LT(evaluate(gt, transformed(gt, yaw), withAlignment(AlignmentKind::kSe3)).ate_rmse_m, 1e-9);
+  EXPECT_GT(evaluate(gt, transformed(gt, yaw), withAlignment(AlignmentKind::kNone)).ate_rmse_m, 0.5);
   Similarity roll;
   roll.T = SE3(SO3::exp(Vec3(0.3, 0, 0)), Vec3::Zero());
-  EXPECT_GT(evaluate(gt, transformed(gt, roll), withAlignment("posyaw")).ate_rmse_m, 0.05);
-  EXPECT_LT(evaluate(gt, transformed(gt, roll), withAlignment("se3")).ate_rmse_m, 1e-9);
+  EXPECT_GT(evaluate(gt, transformed(gt, roll), withAlignment(AlignmentKind::kPosYaw)).ate_rmse_m, 0.05);
+  EXPECT_LT(evaluate(gt, transformed(gt, roll), withAlignment(AlignmentKind::kSe3)).ate_rmse_m, 1e-9);
 }
 
 TEST(Metrics, NoiseOfKnownRms) {
@@ -103,12 +103,12 @@ TEST(Metrics, NoiseOfKnownRms) {
     const double a = 2.399963 * static_cast<double>(i);  // golden angle: directions spread evenly
     est[i].T_w_b = SE3(est[i].T_w_b.so3(), est[i].T_w_b.translation() + sigma * Vec3(std::cos(a), std::sin(a), 0.0));
   }
-  const EvalResult r = evaluate(gt, est, withAlignment("none"));
+  const EvalResult r = evaluate(gt, est, withAlignment(AlignmentKind::kNone));
   EXPECT_NEAR(r.ate_rmse_m, sigma, 1e-12);
   EXPECT_NEAR(r.ate_mean_m, sigma, 1e-12);
   EXPECT_NEAR(r.ate_max_m, sigma, 1e-12);
   // Alignment can only reduce the error of zero-mean noise.
-  EXPECT_LE(evaluate(gt, est, withAlignment("se3")).ate_rmse_m, sigma + 1e-12);
+  EXPECT_LE(evaluate(gt, est, withAlignment(AlignmentKind::kSe3)).ate_rmse_m, sigma + 1e-12);
 }
 
 /// Straight line along x, one pose per metre, identity orientation.
@@ -198,7 +198,7 @@ TEST(Metrics, BadInputIsExplained) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("needs at least 3"), std::string::npos) << e.what();
   }
-  EXPECT_NO_THROW(evaluate(gt, two, withAlignment("posyaw")));
+  EXPECT_NO_THROW(evaluate(gt, two, withAlignment(AlignmentKind::kPosYaw)));
 }
 
 TEST(Metrics, ReproducesTheEvoReferenceFigures) {
@@ -216,7 +216,7 @@ TEST(Metrics, ReproducesTheEvoReferenceFigures) {
   EXPECT_NEAR(se3.rpe[0].rot_rmse_deg, 1.076308, tol);
   EXPECT_NEAR(se3.rpe[1].trans_rmse_m, 0.093719, tol);
   EXPECT_NEAR(se3.rpe[1].rot_rmse_deg, 1.127444, tol);
-  o.alignment = "sim3";
+  o.alignment = AlignmentKind::kSim3;
   EXPECT_NEAR(evaluate(gt, est, o).ate_rmse_m, 0.083841, tol);
 }
 

@@ -35,9 +35,9 @@ Motion motion(const std::string& scenario, bool noise, std::uint64_t seed = 1) {
 }
 
 Preintegration preintegrateSpan(const sim::SynthesizedImu& imu, std::size_t k0, std::size_t k1, const Vec3& ba, const Vec3& bg) {
-  const auto p = preintegrate(imu.samples, imu.samples[k0].t_ns, imu.samples[k1].t_ns, ba, bg, camera::ImuNoise{});
+  const auto p = preintegrate(imu.samples, imu.samples[k0].t_ns, imu.samples[k1].t_ns, ba, bg, imu::ImuNoise{});
   EXPECT_TRUE(p.has_value());
-  return p.value_or(Preintegration(ba, bg, camera::ImuNoise{}));
+  return p.value_or(Preintegration(ba, bg, imu::ImuNoise{}));
 }
 
 NavState trueState(const Motion& m, std::size_t k) {
@@ -141,7 +141,7 @@ TEST(Preintegration, CovarianceMatchesMonteCarlo) {
   // sampling error of a variance from 300 draws, ~25 %).
   const Motion clean = motion("figure8", false);
   const Preintegration ref = preintegrateSpan(clean.imu, 600, 700, Vec3::Zero(), Vec3::Zero());
-  const camera::ImuNoise n;
+  const imu::ImuNoise n;
   sim::Rng rng(99);
   const double dt = 0.005;
   const double sa = n.accel_noise_density / std::sqrt(dt), sg = n.gyro_noise_density / std::sqrt(dt);

@@ -28,13 +28,13 @@ double tiltErrorDeg(const SO3& R_w_b, const SO3& R_true) {
 
 /// Samples of a rig with constant attitude R, constant gyro bias, and world
 /// acceleration a_w(t); white noise of the given densities at 200 Hz.
-std::vector<io::ImuSample> samples(const SO3& R, const Vec3& gyro_bias, double seconds,
+std::vector<imu::ImuSample> samples(const SO3& R, const Vec3& gyro_bias, double seconds,
                                    const std::function<Vec3(double)>& a_w, double accel_noise, double gyro_noise) {
   std::mt19937_64 rng(5);
   std::normal_distribution<double> n01;
-  std::vector<io::ImuSample> out;
+  std::vector<imu::ImuSample> out;
   for (std::int64_t t = 0; t <= static_cast<std::int64_t>(seconds * 1e9); t += kDtNs) {
-    io::ImuSample s;
+    imu::ImuSample s;
     s.t_ns = t;
     s.accel = R.inverse() * (a_w(static_cast<double>(t) * 1e-9) + Vec3(0, 0, kG)) +
               accel_noise * Vec3(n01(rng), n01(rng), n01(rng));

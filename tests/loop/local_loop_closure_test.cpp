@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cstdio>
 
 #include "common/render_fixture.h"
@@ -16,6 +18,8 @@ namespace {
 
 using geometry::SE3;
 using geometry::SO3;
+
+constexpr double kNoBudget = std::numeric_limits<double>::infinity();
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -38,7 +42,7 @@ TEST(LocalLoopClosure, AcceptsARevisitAndRejectsADifferentPlace) {
   const SE3 drift(SO3::exp(Vec3(0.0, 0.0, 1.5 * kPi / 180)), Vec3(0.03, -0.02, 0.02));
   LoopStats stats;
   const std::vector<LoopLink> links =
-      closeLoops({again, drift * T_w_b_again * T_b_c}, {{first, T_w_b_first * T_b_c}}, lo, ao, &stats);
+      closeLoops({again, drift * T_w_b_again * T_b_c}, {{first, T_w_b_first * T_b_c}}, lo, ao, kNoBudget, &stats);
   std::printf("revisit: %d candidates, %d coarse, %d full, %d accepted, %.1f ms\n", stats.candidates, stats.coarse_attempts,
               stats.full_attempts, stats.accepted, stats.ms);
   ASSERT_EQ(links.size(), 1u);
@@ -58,7 +62,7 @@ TEST(LocalLoopClosure, AcceptsARevisitAndRejectsADifferentPlace) {
     if (T_rel.translation().norm() < 0.5 && geometry::angle(T_rel.so3()) < 30 * kPi / 180) continue;  // really elsewhere
     const auto other = keyframe(fx, T_w_b_other, 10 + static_cast<std::int64_t>(sample));
     const std::vector<LoopLink> wrong =
-        closeLoops({other, T_w_b_first * SE3(SO3(), Vec3(0.02, 0, 0)) * T_b_c}, {{first, T_w_b_first * T_b_c}}, lo, ao, &stats);
+        closeLoops({other, T_w_b_first * SE3(SO3(), Vec3(0.02, 0, 0)) * T_b_c}, {{first, T_w_b_first * T_b_c}}, lo, ao, kNoBudget, &stats);
     ++tried;
     rejected += wrong.empty();
     std::printf("different place (sample %zu, %.2f m, %.0f deg away): %s (%d coarse, %d cross-check failures)\n", sample,
@@ -81,11 +85,11 @@ TEST(LocalLoopClosure, GatesCandidatesByDistanceAndViewingDirection) {
   lo.skip_recent_keyframes = 0;
   LoopStats stats;
   // Farther than max_distance_depth_ratio × depth, or turned beyond max_view_angle_deg: no candidate.
-  closeLoops({k2, T * SE3(SO3(), Vec3(1.1 * lo.max_distance_depth_ratio * depth, 0, 0))}, {{k, T}}, lo, {}, &stats);
+  closeLoops({k2, T * SE3(SO3(), Vec3(1.1 * lo.max_distance_depth_ratio * depth, 0, 0))}, {{k, T}}, lo, {}, kNoBudget, &stats);
   EXPECT_EQ(stats.candidates, 0);
-  closeLoops({k2, T * SE3(SO3::exp(Vec3(0, 1.1 * lo.max_view_angle_deg * kPi / 180, 0)), Vec3::Zero())}, {{k, T}}, lo, {}, &stats);
+  closeLoops({k2, T * SE3(SO3::exp(Vec3(0, 1.1 * lo.max_view_angle_deg * kPi / 180, 0)), Vec3::Zero())}, {{k, T}}, lo, {}, kNoBudget, &stats);
   EXPECT_EQ(stats.candidates, 0);
-  closeLoops({k2, T}, {{k, T}}, lo, {}, &stats);
+  closeLoops({k2, T}, {{k, T}}, lo, {}, kNoBudget, &stats);
   EXPECT_EQ(stats.candidates, 1);
 }
 

@@ -1,5 +1,5 @@
-// `edgevio simulate` end to end on short sequences: a readable ASL folder,
-// byte-identical output for a seed, drops and skips, and clear errors.
+// The simulator: clear errors for bad requests, motion that follows the
+// trajectory file's. (Whole folders: simulator_e2e_test.cpp.)
 #include "edgevio/sim/simulator.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/sim_fixture.h"
 #include "common/test_support.h"
 #include "edgevio/common/error.h"
 #include "edgevio/geometry/types.h"
@@ -24,108 +25,17 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-SimOptions fastOptions() {
-  SimOptions o;
-  o.scene.texture_log2_size = 8;  // quicker setup; rendering itself is unchanged
-  return o;
-}
-
-SimRequest shortScenario(const std::string& out) {
-  SimRequest r;
-  r.out_dir = out;
-  r.scenario = "figure8";
-  r.start_s = 1.5;
-  r.duration_s = 0.6;
-  r.seed = 3;
-  return r;
-}
-
-/// A span of a real EuRoC recording: its ground truth, its IMU log replayed.
-SimRequest replayRequest(const std::string& euroc_dir, const std::string& out, double start_s, double duration_s) {
-  SimRequest r;
-  r.out_dir = out;
-  r.trajectory_file = euroc_dir + "/groundtruth.csv";
-  r.imu = euroc_dir + "/imu0.csv";
-  r.start_s = start_s;
-  r.duration_s = duration_s;
-  return r;
-}
-
-TEST(Simulator, WritesAnAslFolderTheReaderAccepts) {
-  TempDir dir;
-  SimRequest r = shortScenario(dir.path());
-  r.drop_rate = 0.3;
-  r.blur_ms = 4.0;
-  r.exposure_changes = true;
-  const SimSummary s = simulate(r, fastOptions());
-  EXPECT_EQ(s.frames, 13u);  // 0.6 s at 20 Hz, both ends included
-  EXPECT_GT(s.dropped_cam1, 0u);
-
-  io::EurocDataset d(dir.path(), io::DatasetOptions{});
-  EXPECT_EQ(d.stereoPairs().size(), s.frames - s.dropped_cam1);
-  EXPECT_EQ(d.unpairedFrames(0), s.dropped_cam1);
-  EXPECT_EQ(d.imu().size(), 121u);
-  EXPECT_EQ(d.groundTruth().size(), 121u);
-  EXPECT_TRUE(d.groundTruth().front().hasVelocityAndBias());
-  EXPECT_TRUE(d.warnings().size() == 1u) << "only the unpaired-frames warning is expected";
-  const auto pair = d.loadStereo(0);
-  ASSERT_TRUE(pair.has_value());
-  EXPECT_EQ(pair->left.cols, 752);
-  // Calibration written and read back.
-  const camera::StereoRig rig = io::eurocDefaultRig();
-  EXPECT_NEAR(d.calibration().cam[1].fx, rig.cam[1].fx, 1e-12);
-  EXPECT_LT((d.calibration().T_b_c[1].matrix() - rig.T_b_c[1].matrix()).norm(), 1e-9);
-  // An image has texture: a fair spread of intensities, not saturated.
-  cv::Scalar mean, stddev;
-  cv::meanStdDev(pair->left, mean, stddev);
-  EXPECT_GT(mean[0], 50.0);
-  EXPECT_LT(mean[0], 200.0);
-  EXPECT_GT(stddev[0], 20.0);
-}
-
-TEST(Simulator, SameSeedGivesByteIdenticalOutput) {
-  TempDir a, b, c;
-  SimRequest r = shortScenario(a.path());
-  r.duration_s = 0.5;
-  simulate(r, fastOptions());
-  r.out_dir = b.path();
-  simulate(r, fastOptions());
-  r.out_dir = c.path();
-  r.seed = 4;
-  simulate(r, fastOptions());
-  std::size_t files = 0;
-  for (const auto& e : fs::recursive_directory_iterator(fs::path(a.path()) / "mav0")) {
-    if (!e.is_regular_file()) continue;
-    const fs::path rel = fs::relative(e.path(), a.path());
-    EXPECT_EQ(test::readFile(e.path().string()), test::readFile((fs::path(b.path()) / rel).string())) << rel;
-    ++files;
-  }
-  EXPECT_GT(files, 20u);
-  const std::string img = "mav0/cam0/data/1600000001500000000.png";
-  EXPECT_NE(test::readFile((fs::path(a.path()) / img).string()), test::readFile((fs::path(c.path()) / img).string()))
-      << "another seed, another noise";
-}
-
-TEST(Simulator, SkipKeepsEveryKPlusOneFrameAndTheImu) {
-  TempDir dir;
-  SimRequest r = shortScenario(dir.path());
-  r.skip = 2;
-  const SimSummary s = simulate(r, fastOptions());
-  EXPECT_EQ(s.frames, 5u);  // t = 0, 0.15, 0.3, 0.45, 0.6
-  EXPECT_EQ(s.imu_samples, 121u);
-}
-
 TEST(Simulator, BadInputIsExplained) {
   TempDir dir;
   const auto expectError = [&](SimRequest r, const std::string& fragment) {
     try {
-      simulate(r, fastOptions());
+      simulate(r, test::fastSimOptions());
       ADD_FAILURE() << "no error, expected: " << fragment;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
     }
   };
-  SimRequest r = shortScenario(dir.file("out"));
+  SimRequest r = test::shortScenario(dir.file("out"));
   r.scenario.clear();
   r.trajectory_file = dir.file("missing.txt");
   expectError(r, "missing.txt: cannot open");
@@ -143,33 +53,15 @@ TEST(Simulator, BadInputIsExplained) {
   r.trajectory_file = dir.write("ok.txt", "1.0 0 0 1 0 0 0 1\n2.0 0 0 1 0 0 0 1\n3.0 0 0 1 0 0 0 1\n");
   r.start_s = 5.0;
   expectError(r, "was requested");
-  r = shortScenario(dir.file("out"));
+  r = test::shortScenario(dir.file("out"));
   r.scenario = "loop-the-loop";
   expectError(r, "unknown scenario");
-  r = shortScenario(dir.file("out"));
+  r = test::shortScenario(dir.file("out"));
   r.imu = dir.write("imu.csv", "#t,w,w,w,a,a,a\n5,0,0,0,0,0,9.8\n10,0,0,0,0,0,9.8\n");
   expectError(r, "IMU log covers");
-  r = shortScenario(dir.file("out"));
+  r = test::shortScenario(dir.file("out"));
   r.drop_rate = 1.5;
   expectError(r, "--drop-rate");
-}
-
-TEST(Simulator, ReplaysARealImuLogAndKeepsItsBiases) {
-  EDGEVIO_REQUIRE_SHARED_DATA("trajectories/euroc/V1_02_medium");
-  TempDir dir;
-  const SimRequest r = replayRequest(data_path, dir.path(), 10.0, 0.5);
-  simulate(r, fastOptions());
-  const auto real = io::readImuCsv(r.imu, 1.0, nullptr);
-  const auto written = io::readImuCsv(dir.path() + "/mav0/imu0/data.csv", 1.0, nullptr);
-  ASSERT_GT(written.size(), 90u);
-  const auto it = std::find_if(real.begin(), real.end(), [&](const io::ImuSample& s) { return s.t_ns == written.front().t_ns; });
-  ASSERT_NE(it, real.end());
-  for (std::size_t i = 0; i < written.size(); ++i) {
-    EXPECT_EQ(written[i].t_ns, (it + static_cast<long>(i))->t_ns);
-    EXPECT_EQ(written[i].accel, (it + static_cast<long>(i))->accel);
-  }
-  const io::Trajectory gt = io::readTrajectory(dir.path() + "/mav0/state_groundtruth_estimate0/data.csv");
-  EXPECT_TRUE(gt.front().hasVelocityAndBias());
 }
 
 // A hand-held shake: 1 cm at 5 Hz on a slow drift, sampled at 200 Hz. A cubic
@@ -197,8 +89,8 @@ TEST(Simulator, FollowsA5HzShakeOfTheTrajectoryFile) {
   r.trajectory_file = write("shake_200hz.txt", 200.0);
   r.start_s = 1.0;
   r.duration_s = 0.6;
-  const SimSummary summary = simulate(r, fastOptions());
-  EXPECT_DOUBLE_EQ(summary.knot_dt_s, fastOptions().knot_dt_s);
+  const SimSummary summary = simulate(r, test::fastSimOptions());
+  EXPECT_DOUBLE_EQ(summary.knot_dt_s, test::fastSimOptions().knot_dt_s);
   const double bound = summary.knot_dt_s * summary.knot_dt_s / 6.0 * std::pow(2 * kPi * 5.0, 2) * 0.01;
   double worst = 0.0;
   for (const auto& s : io::readTrajectory(r.out_dir + "/mav0/state_groundtruth_estimate0/data.csv"))
@@ -208,7 +100,7 @@ TEST(Simulator, FollowsA5HzShakeOfTheTrajectoryFile) {
 
   r.out_dir = dir.file("out20");
   r.trajectory_file = write("shake_20hz.txt", 20.0);
-  EXPECT_DOUBLE_EQ(simulate(r, fastOptions()).knot_dt_s, 0.05);
+  EXPECT_DOUBLE_EQ(simulate(r, test::fastSimOptions()).knot_dt_s, 0.05);
 }
 
 // At 45.000 s EuRoC MH_04's ground truth jumps 13 cm for one sample and back
@@ -220,7 +112,7 @@ TEST(Simulator, RendersTheMachineHallWithoutItsTrackerGlitch) {
   EDGEVIO_REQUIRE_SHARED_DATA("trajectories/euroc/MH_04_difficult");
   const auto maxAccelExcess = [&](const SimOptions& options) {
     TempDir dir;
-    const SimSummary summary = simulate(replayRequest(data_path, dir.path(), 44.8, 0.5), options);
+    const SimSummary summary = simulate(test::replayRequest(data_path, dir.path(), 44.8, 0.5), options);
     EXPECT_EQ(summary.position_steps_removed > 0, options.trajectory_max_accel_mps2 > 0);
     const auto imu = io::readImuCsv(dir.path() + "/mav0/imu0/data.csv", 1.0, nullptr);
     const io::Trajectory gt = io::readTrajectory(dir.path() + "/mav0/state_groundtruth_estimate0/data.csv");
@@ -231,7 +123,7 @@ TEST(Simulator, RendersTheMachineHallWithoutItsTrackerGlitch) {
       max_accel = std::max(max_accel, (gt[i].v_w - gt[i - 1].v_w).norm() / (1e-9 * static_cast<double>(gt[i].t_ns - gt[i - 1].t_ns)));
     return max_accel - (max_force + 9.81 + 1.0);
   };
-  SimOptions options = fastOptions();
+  SimOptions options = test::fastSimOptions();
   EXPECT_LT(maxAccelExcess(options), 0.0);
   options.trajectory_max_accel_mps2 = 0.0;  // the file as is: the test can tell
   EXPECT_GT(maxAccelExcess(options), 0.0);

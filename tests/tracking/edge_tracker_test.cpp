@@ -17,7 +17,7 @@ const test::RenderFixture& fixture() {
 }
 
 struct Outcome {
-  FrameTrack track;
+  Track track;
   double error_m = 0.0;  ///< tracked position against the truth
 };
 
@@ -29,11 +29,13 @@ Outcome trackFrom(std::size_t i, const Vec3& offset, PredictionReliability relia
   const std::size_t j = i + 30;  // 200 Hz samples, 20 Hz frames
   const vision::VisionOptions vo;
   const TrackingOptions to;  // imu_translation_check_m = 0.05
-  EdgeTracker tracker(fx.rectifier(), vo, AlignmentOptions(), to);
-  tracker.track(prepareFrame(fx.frame(path[i].T_w_b, 0, i), fx.rectifier(), vo), path[i].T_w_b, PredictionReliability::kNone);
-  const SE3 pred(path[j].T_w_b.so3(), path[j].T_w_b.translation() + offset);
+  const EdgeTracker tracker(fx.rectifier(), vo, AlignmentOptions(), to);
+  const auto keyframe = tracker.makeKeyframe(prepareFrame(fx.frame(path[i].T_w_b, 0, i), fx.rectifier(), vo));
+  Prediction pred;
+  pred.T_w_b = SE3(path[j].T_w_b.so3(), path[j].T_w_b.translation() + offset);
+  pred.reliable = reliable;
   Outcome o;
-  o.track = tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), pred, reliable);
+  o.track = tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), *keyframe, path[i].T_w_b, pred);
   o.error_m = (o.track.T_w_b.translation() - path[j].T_w_b.translation()).norm();
   return o;
 }
@@ -42,8 +44,8 @@ constexpr std::size_t kSample = 1280;  // a view with ~7600 reference points (se
 
 TEST(EdgeTracker, NoTranslationCheckNearThePrediction) {
   const Outcome o = trackFrom(kSample, Vec3::Zero(), PredictionReliability::kPose);
-  EXPECT_TRUE(o.track.self_check_passed);
-  EXPECT_FALSE(o.track.translation_check_failed);
+  EXPECT_TRUE(o.track.passed());
+  EXPECT_EQ(o.track.check, PredictionCheck::kNone);
   EXPECT_LT(o.error_m, 0.01);  // three frames apart: alignment error bound of a few mm (edge_alignment_test)
 }
 
@@ -56,12 +58,12 @@ TEST(EdgeTracker, AWrongPredictionDoesNotDragAGoodAlignment) {
   // first alignment) is kept.
   const Vec3 offset(0.0, 0.0, 0.25);
   const Outcome pose = trackFrom(kSample, offset, PredictionReliability::kPose);
-  EXPECT_TRUE(pose.track.translation_check_failed);
-  EXPECT_TRUE(pose.track.self_check_passed);
+  EXPECT_EQ(pose.track.check, PredictionCheck::kTranslation);
+  EXPECT_TRUE(pose.track.passed());
   EXPECT_LT(pose.error_m, 0.01);
   // Only an IMU pose prediction is trusted for translation: a gyro-only one is not checked.
   const Outcome rotation = trackFrom(kSample, offset, PredictionReliability::kRotation);
-  EXPECT_FALSE(rotation.track.translation_check_failed);
+  EXPECT_EQ(rotation.track.check, PredictionCheck::kNone);
   EXPECT_LT(rotation.error_m, 0.01);
 }
 
@@ -77,19 +79,22 @@ TEST(EdgeTracker, TheGyroRotationSinceTheKeyframeIsTheAlignmentsRotationPrior) {
   TrackingOptions to;
   to.rotation_prior_deg = 1e-3;
   to.rotation_prior_fraction = 0.0;
-  EdgeTracker tracker(fx.rectifier(), vo, AlignmentOptions(), to);
-  tracker.track(prepareFrame(fx.frame(path[i].T_w_b, 0, i), fx.rectifier(), vo), path[i].T_w_b, PredictionReliability::kNone);
-  const geometry::SO3 R_gyro = path[i].T_w_b.so3().inverse() * path[j].T_w_b.so3() * geometry::SO3::exp(Vec3(0.3 * 3.14159265358979 / 180.0, 0.0, 0.0));
+  const EdgeTracker tracker(fx.rectifier(), vo, AlignmentOptions(), to);
+  const auto keyframe = tracker.makeKeyframe(prepareFrame(fx.frame(path[i].T_w_b, 0, i), fx.rectifier(), vo));
+  const geometry::SO3 R_gyro = path[i].T_w_b.so3().inverse() * path[j].T_w_b.so3() * geometry::SO3::exp(Vec3(0.3 * kDegToRad, 0.0, 0.0));
   std::vector<std::int64_t> asked;
-  const FrameTrack t = tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), path[j].T_w_b,
-                                     PredictionReliability::kPose, [&](std::int64_t t_ref) -> std::optional<geometry::SO3> {
-                                       asked.push_back(t_ref);
-                                       return R_gyro;
-                                     });
-  ASSERT_TRUE(t.self_check_passed);
+  Prediction pred;
+  pred.T_w_b = path[j].T_w_b;
+  pred.reliable = PredictionReliability::kPose;
+  pred.gyro_since = [&](std::int64_t t_ref) -> std::optional<geometry::SO3> {
+    asked.push_back(t_ref);
+    return R_gyro;
+  };
+  const Track t = tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), *keyframe, path[i].T_w_b, pred);
+  ASSERT_TRUE(t.passed());
   ASSERT_FALSE(asked.empty());
   for (const std::int64_t t_ref : asked) EXPECT_EQ(t_ref, 0);
-  const double off_deg = geometry::angle((path[i].T_w_b.so3() * R_gyro).inverse() * t.T_w_b.so3()) * 180.0 / 3.14159265358979;
+  const double off_deg = geometry::angle((path[i].T_w_b.so3() * R_gyro).inverse() * t.T_w_b.so3()) * kRadToDeg;
   EXPECT_LT(off_deg, 0.01);
 }
 

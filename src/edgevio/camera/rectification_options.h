@@ -1,18 +1,24 @@
 #pragma once
-#include <string>
+#include "edgevio/common/options.h"
 
 namespace edgevio::camera {
 
-/// Options of stereo rectification (config section `rectification`; METHOD.md §3).
+/// Stereo rectification (config section `rectification`; METHOD.md §3).
 struct RectificationOptions {
-  /// Free-scaling parameter of stereoRectify: 0 keeps only valid pixels, 1 keeps all source pixels. [-]
-  double alpha = 0.0;
+  double alpha;
 
-  template <class Visitor>
-  void visit(Visitor& v) {
-    v("alpha", alpha, "-", "stereo rectification free scaling: 0 = only valid pixels (paper), 1 = all pixels");
-  }
-  std::string validate() const;
+  RectificationOptions() { options::setDefaults(*this); }
+  static const options::Table<RectificationOptions>& table();
 };
+
+inline const options::Table<RectificationOptions>& RectificationOptions::table() {
+  using S = RectificationOptions;
+  using namespace options;
+  static const Table<S> t{{
+      number("alpha", &S::alpha, 0.0, "-", "free scaling of stereoRectify: 0 keeps only valid pixels (paper), 1 keeps every pixel",
+             closed(0, 1)),
+  }};
+  return t;
+}
 
 }  // namespace edgevio::camera

@@ -30,7 +30,8 @@
 #include "edgevio/eval/batch.h"
 #include "edgevio/eval/svg_plot.h"
 #include "edgevio/pipeline/component_times.h"
-#include "edgevio/pipeline/odometry.h"
+#include "edgevio/pipeline/frame_record.h"
+#include "edgevio/pipeline/mode.h"
 
 namespace edgevio::cli {
 
@@ -60,7 +61,8 @@ std::vector<Job> planJobs(const std::string& matrix_path, const std::string& out
     modes.clear();
     for (const auto& n : m["modes"]) {
       const std::string mode = n.as<std::string>();
-      if (const std::string bad = pipeline::checkMode(mode); !bad.empty()) throw InputError(matrix_path, yamlLine(n), bad);
+      if (!pipeline::parseMode(mode))
+        throw InputError(matrix_path, yamlLine(n), "unknown mode '" + mode + "': use " + pipeline::kModeNames);
       modes.push_back(mode);
     }
   }
@@ -120,9 +122,14 @@ std::vector<Job> planJobs(const std::string& matrix_path, const std::string& out
 }
 
 void writeTimingTable(std::ostream& out, const std::vector<eval::RunEvaluation>& runs, const std::string& runs_dir) {
-  out << "\n## Time per component [ms, mean]\n\nPer frame, except block matching and loop closure (per keyframe); "
-         "one thread per run.\n\n| sequence | mode | Canny | distance transform | edge lines | block matching | "
-         "alignment | back links | optimisation | marginalisation | loop closure | total |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  out << "\n## Time per component [ms, mean]\n\nPer frame, except those marked per keyframe; one thread per run.\n\n| sequence | mode |";
+  std::string rule = "|---|---|";
+  for (const pipeline::FrameColumn& c : pipeline::frameColumns())
+    if (c.component.name) {
+      out << " " << c.component.name << (std::string(c.component.per) == "keyframe" ? " (per keyframe)" : "") << " |";
+      rule += "---:|";
+    }
+  out << "\n" << rule << "\n";
   for (const auto& r : runs) {
     std::vector<pipeline::ComponentTime> times;
     try {
@@ -130,18 +137,13 @@ void writeTimingTable(std::ostream& out, const std::vector<eval::RunEvaluation>&
     } catch (const InputError&) {
       continue;
     }
-    const auto cell = [&](const char* component) {
-      for (const auto& c : times)
-        if (c.component.rfind(component, 0) == 0) {
-          char b[32];
-          std::snprintf(b, sizeof b, "%.2f", c.mean_ms);
-          return std::string(b);
-        }
-      return std::string("-");
-    };
-    out << "| " << r.sequence << " | " << r.mode << " | " << cell("Canny") << " | " << cell("distance") << " | "
-        << cell("edge lines") << " | " << cell("block") << " | " << cell("edge alignment") << " | " << cell("back links") << " | " << cell("optimisation")
-        << " | " << cell("marginalisation") << " | " << cell("loop") << " | " << cell("total") << " |\n";
+    out << "| " << r.sequence << " | " << r.mode << " |";
+    for (const pipeline::ComponentTime& c : times) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%.2f", c.mean_ms);
+      out << " " << (c.count > 0 ? b : "-") << " |";
+    }
+    out << "\n";
   }
 }
 

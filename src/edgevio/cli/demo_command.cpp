@@ -10,7 +10,7 @@
 #include "edgevio/eval/metrics.h"
 #include "edgevio/eval/report.h"
 #include "edgevio/eval/svg_plot.h"
-#include "edgevio/pipeline/offline_run.h"
+#include "edgevio/pipeline/run.h"
 #include "edgevio/sim/simulator.h"
 
 namespace edgevio::cli {
@@ -21,7 +21,8 @@ int demo(const DemoArgs& a, std::ostream& out, std::ostream& err) {
   try {
     const Config config;
     const fs::path root(a.out);
-    const std::string mode = "edge+imu+loop";  // the full system
+    const pipeline::Mode full_system;
+    const std::string mode = pipeline::modeName(full_system);
     const fs::path data = root / "data", run = root / ("run-" + mode);
     // 1. Simulate (once: an existing folder from the same request is reused).
     sim::SimRequest r;
@@ -39,8 +40,9 @@ int demo(const DemoArgs& a, std::ostream& out, std::ostream& err) {
     // 2. Estimate.
     out << "[2/3] running the full system (" << mode << ")\n";
     Progress p("frames", Progress::stderrIsTerminal());
-    const pipeline::RunSummary s = pipeline::runOffline({data.string(), run.string(), mode, 0}, config,
-                                                        [&](std::size_t d, std::size_t t, double q) { p.update(d, t, q); });
+    pipeline::RunObserver observer;
+    observer.progress = [&](std::size_t d, std::size_t t, double q) { p.update(d, t, q); };
+    const pipeline::RunSummary s = pipeline::run({data.string(), run.string(), full_system, 0, false}, config, observer);
     // 3. Evaluate.
     out << "[3/3] evaluating against the ground truth\n\n";
     const eval::EvalResult e =

@@ -58,10 +58,11 @@ int eval(const EvalArgs& args, std::ostream& out, std::ostream& err) {
   try {
     Config config = args.config.empty() ? Config{} : loadConfig(args.config);
     eval::EvalOptions& options = config.eval;
-    if (!args.align.empty()) options.alignment = args.align;
+    if (!args.align.empty() && !options::parseChoice(eval::kAlignmentChoices, args.align, &options.alignment))
+      throw InputError("--align: '" + args.align + "' is not one of " + options::choiceList(eval::kAlignmentChoices));
     if (!args.deltas_m.empty()) options.rpe_deltas_m = args.deltas_m;
     if (!args.segments.empty()) parseSegments(args.segments, &options);
-    const std::string invalid = options.validate();
+    const std::string invalid = options::validate(options);
     if (!invalid.empty()) throw InputError("invalid evaluation option: " + invalid);
 
     if (!args.results_dir.empty()) return evalResults(args.results_dir, options, out, err);

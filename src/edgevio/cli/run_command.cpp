@@ -4,18 +4,21 @@
 #include "edgevio/cli/progress.h"
 #include "edgevio/common/error.h"
 #include "edgevio/config/config.h"
-#include "edgevio/pipeline/offline_run.h"
+#include "edgevio/pipeline/run.h"
 
 namespace edgevio::cli {
 
 int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
   try {
     const Config config = a.config.empty() ? Config{} : loadConfig(a.config);
-    pipeline::RunRequest r{a.dataset, a.out, a.mode, a.skip, a.realtime};
+    const std::optional<pipeline::Mode> mode = pipeline::parseMode(a.mode);
+    if (!mode) throw InputError("--mode: unknown mode '" + a.mode + "': use " + pipeline::kModeNames);
+    const pipeline::RunRequest r{a.dataset, a.out, *mode, a.skip, a.realtime};
     Progress progress("frames", Progress::stderrIsTerminal());
-    const pipeline::RunSummary s = pipeline::runOffline(
-        r, config, [&](std::size_t done, std::size_t total, double seq_s) { progress.update(done, total, seq_s); },
-        [&](const std::string& event) { err << "warning: " << event << "\n"; });
+    pipeline::RunObserver observer;
+    observer.progress = [&](std::size_t done, std::size_t total, double seq_s) { progress.update(done, total, seq_s); };
+    observer.event = [&](const std::string& event) { err << "warning: " << event << "\n"; };
+    const pipeline::RunSummary s = pipeline::run(r, config, observer);
     out << "mode " << a.mode << ": " << s.frames << " frames, " << s.keyframes << " keyframes, "
         << s.self_check_failures << " self-check failures, " << s.external_check_rejections
         << " external-check rejections, " << (a.realtime ? std::to_string(s.dropped_frames) + " frames dropped (real time), " : std::string())

@@ -38,8 +38,18 @@ bool parseFiniteDouble(const std::string& s, double* out) {
   return true;
 }
 
-TableReader::TableReader(std::string path, Separator sep) : path_(std::move(path)), sep_(sep), in_(path_) {
+TableReader::TableReader(std::string path, Separator sep, Header header) : path_(std::move(path)), sep_(sep), in_(path_) {
   if (!in_) throw InputError(path_, 0, "cannot open file for reading (check the path and permissions)");
+  if (header == Header::kColumnNames) {
+    if (!next()) throw InputError(path_, 0, "empty file: expected a header row of column names");
+    names_ = std::move(fields_);
+  }
+}
+
+std::size_t TableReader::column(const std::string& name) const {
+  for (std::size_t i = 0; i < names_.size(); ++i)
+    if (names_[i] == name) return i;
+  throw InputError(path_, 1, "no column '" + name + "' in the header");
 }
 
 bool TableReader::next() {

@@ -1,6 +1,7 @@
 #pragma once
-// The one reader of line-based numeric tables: EuRoC CSV files (comma
-// separated, '#' header) and TUM trajectory files (whitespace separated).
+// The one reader of line-based tables: EuRoC CSV files (comma separated,
+// '#' header), TUM trajectory files (whitespace separated) and the CSV files
+// edgevio writes (a header row of column names, e.g. frames.csv).
 // It streams the file line by line, skips blank and '#' lines, strips '\r',
 // and converts fields with errors that name the file, line and column.
 #include <cstdint>
@@ -14,8 +15,11 @@ class TableReader {
  public:
   enum class Separator { kComma, kWhitespace };
 
-  /// Throws InputError when the file cannot be opened.
-  TableReader(std::string path, Separator sep);
+  enum class Header { kNone, kColumnNames };
+
+  /// Throws InputError when the file cannot be opened. With
+  /// Header::kColumnNames the first row names the columns (column()).
+  TableReader(std::string path, Separator sep, Header header = Header::kNone);
 
   /// Reads the next data row; false at end of file.
   bool next();
@@ -24,6 +28,9 @@ class TableReader {
   std::size_t size() const { return fields_.size(); }
   const std::string& path() const { return path_; }
   const std::string& field(std::size_t i) const { return fields_.at(i); }
+
+  /// The index of a named column; throws InputError naming the file when there is none.
+  std::size_t column(const std::string& name) const;
 
   /// Requires at least `n` fields; `what` describes the expected row layout.
   void requireFields(std::size_t n, const std::string& what) const;
@@ -45,6 +52,7 @@ class TableReader {
   std::ifstream in_;
   std::string buffer_;
   std::vector<std::string> fields_;
+  std::vector<std::string> names_;
   std::size_t line_ = 0;
 };
 

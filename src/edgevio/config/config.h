@@ -1,9 +1,11 @@
 #pragma once
-// The edgevio configuration: every parameter of every module, each with a
-// default, a unit and a one-line meaning, written once in its module's
-// Options::visit(). This file combines them into one YAML document
-// (config/euroc.yaml is the documented default) and reads it back; unknown keys,
-// wrong types and invalid values are errors naming the file, line and key.
+// The edgevio configuration: every module's options struct as one section of
+// one YAML document (config/euroc.yaml is the documented default, written by
+// `edgevio --print-config`). Each option's key, default, unit, meaning and
+// valid values are written once, in its module's options table
+// (common/options.h); reading, writing, validation and the reference
+// docs/configuration.md all come from those tables. Unknown keys, wrong types
+// and invalid values are errors naming the file, line and key.
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -33,28 +35,35 @@ struct Config {
   eval::EvalOptions eval;
   sim::SimOptions sim;
 
-  template <class Visitor>
-  void visitSections(Visitor& v) {
-    v("dataset", dataset, "EuRoC/ASL dataset input (METHOD.md §1 driver)");
-    v("rectification", rectification, "stereo rectification (METHOD.md §3 pre-processing)");
-    v("vision", vision, "front-end image processing: pyramid, Canny, stereo depth (METHOD.md §3)");
-    v("alignment", alignment, "edge alignment: Gauss-Newton, robust weights, self check (METHOD.md §3)");
-    v("tracking", tracking, "keyframe policy, initial guess, static initialisation (METHOD.md §3, §5)");
-    v("estimator", estimator, "sliding-window estimator: IMU links, external check, two-way marginalisation (METHOD.md §4, §5)");
-    v("back_links", back_links, "links from each new keyframe back into the keyframes before it (not in METHOD.md; window modes)");
-    v("loop", loop, "local loop closure between keyframes in the window (METHOD.md §6)");
-    v("eval", eval, "trajectory evaluation: association, alignment, metrics (METHOD.md §8)");
-    v("sim", sim, "simulator: motion, scene, camera effects, IMU (edgevio simulate)");
-  }
-  /// Empty when every section is valid, else the first problem, prefixed by its section.
+  /// "" when every option is valid, else the first problem as "section.key: why".
   std::string validate() const;
 };
+
+/// Calls f(name, meaning, section) for each section of `config` in file order.
+template <class C, class F>
+void forEachSection(C& config, F&& f) {
+  f("dataset", "dataset input (METHOD.md §1, the driver)", config.dataset);
+  f("rectification", "stereo rectification (METHOD.md §3, pre-processing)", config.rectification);
+  f("vision", "front-end image processing: pyramid, Canny, stereo depth (METHOD.md §3)", config.vision);
+  f("alignment", "edge alignment: Gauss-Newton, robust weights, self check (METHOD.md §3)", config.alignment);
+  f("tracking", "keyframe policy, checks against the prediction, static initialisation (METHOD.md §3, §5)", config.tracking);
+  f("estimator", "sliding-window estimator: IMU links, external check, two-way marginalisation (METHOD.md §4, §5)",
+    config.estimator);
+  f("back_links", "links from each new keyframe back into the keyframes before it (not in METHOD.md; window modes)",
+    config.back_links);
+  f("loop", "local loop closure between keyframes in the window (METHOD.md §6)", config.loop);
+  f("eval", "trajectory evaluation: association, alignment, metrics (METHOD.md §8)", config.eval);
+  f("sim", "simulator: motion, scene, camera effects, IMU (edgevio simulate)", config.sim);
+}
 
 /// Reads a config file over the defaults. Keys absent from the file keep their
 /// defaults and are listed in `missing_keys` (as "section.key") when given.
 Config loadConfig(const std::string& path, std::vector<std::string>* missing_keys = nullptr);
 
-/// Writes the config as YAML with every key, its unit and meaning as comments.
+/// Writes the config as YAML with every key, its unit, meaning and valid values as comments.
 void writeConfig(std::ostream& out, const Config& config);
+
+/// Writes the reference of every option as Markdown (docs/configuration.md).
+void writeConfigReference(std::ostream& out);
 
 }  // namespace edgevio

@@ -15,10 +15,6 @@ struct ExternalCheckResult {
   double translation_m = 0.0;  ///< distance between the link's and the prediction's translations
 };
 
-/// The IMU's prediction of state n from state r (METHOD.md §4):
-/// p_n = p_r + v_r Δt − ½gΔt² + R_r α̂, v_n = v_r − gΔt + R_r β̂, R_n = R_r γ̂.
-imu::NavState predictState(const imu::NavState& r, const imu::Preintegration& pre);
-
 ExternalCheckResult externalCheck(const geometry::SE3& T_nr_measured, const imu::NavState& r,
                                   const imu::NavState& predicted_n, const geometry::SE3& T_b_c,
                                   double max_rotation_deg, double max_translation_m);

@@ -37,10 +37,28 @@ Vec15 boxminus(const NavState& x, const NavState& x0) {
 
 namespace {
 
+// Added to an inertial link's covariance so that a zero-length link still has
+// a finite information matrix; about 1 % of the smallest variance a 50 ms link
+// carries (its gyroscope bias walk: (2 x 1.94e-5)^2 x 0.05 = 7.5e-11 at EuRoC's density).
+constexpr double kCovarianceFloor = 1e-12;
+// Added to the marginalised state's block before it is inverted: a direction
+// no link informs (a bias never excited) stays finite, while every informed
+// one (information >= 1e-4: variances of at most 1e4) is untouched.
+constexpr double kMarginalRegulariser = 1e-12;
+// The gauge prior's stiffness relative to H's largest diagonal entry: a step
+// along a gauge direction shrinks to about 1e-3 of the unconstrained one,
+// while H stays far from double precision's limits (1e3 of 1e16).
+constexpr double kGaugeStiffness = 1e3;
+// A Gauss-Newton step of this norm (m, rad, m/s and bias units together)
+// moves no state measurably: the solve has converged.
+constexpr double kNegligibleStep = 1e-9;
+// The perturbed Cholesky grows λ tenfold per attempt: 20 attempts reach 1e20
+// times the first, more than any finite H needs.
+constexpr int kDampingAttempts = 20;
+constexpr double kDampingGrowth = 10.0;
+
 imu::Mat15 inertialInformation(const imu::Preintegration& p) {
-  // The covariance is positive definite after one step; a tiny diagonal keeps
-  // the inverse finite for degenerate (zero-length) links.
-  const imu::Mat15 P = p.covariance() + imu::Mat15::Identity() * 1e-12;
+  const imu::Mat15 P = p.covariance() + imu::Mat15::Identity() * kCovarianceFloor;
   return P.ldlt().solve(imu::Mat15::Identity());
 }
 
@@ -98,7 +116,7 @@ struct Normal {
 /// Where a state's Jacobians are evaluated: its first estimate (the prior's
 /// linearisation point) when it is in the prior and first-estimate Jacobians
 /// are on, otherwise its current estimate.
-std::vector<const NavState*> jacobianPoints(const Window& w, const SolverOptions& o) {
+std::vector<const NavState*> jacobianPoints(const Window& w, const EstimatorOptions& o) {
   std::vector<const NavState*> at(w.states.size());
   for (std::size_t i = 0; i < w.states.size(); ++i) at[i] = &w.states[i].x;
   if (o.first_estimate_jacobians)
@@ -108,7 +126,7 @@ std::vector<const NavState*> jacobianPoints(const Window& w, const SolverOptions
 
 /// Adds the factors selected by the predicates, with local indices from `slot`.
 template <class UseInertial, class UseVisual>
-void linearize(const Window& w, const SolverOptions& o, const std::map<std::size_t, long>& slot, bool with_prior,
+void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::size_t, long>& slot, bool with_prior,
                UseInertial use_inertial, UseVisual use_visual, Normal* n) {
   const std::vector<const NavState*> jp = jacobianPoints(w, o);
   // Jacobians in the residual's own call when they are taken at the estimate,
@@ -165,7 +183,7 @@ std::map<std::size_t, long> identitySlots(std::size_t n) {
 VectorXd perturbedCholeskySolve(const MatrixXd& H, const VectorXd& rhs, double lambda0) {
   double lambda = lambda0 * std::max(1.0, H.diagonal().cwiseAbs().maxCoeff());
   VectorXd x;
-  for (int attempt = 0; attempt < 20; ++attempt, lambda *= 10.0)
+  for (int attempt = 0; attempt < kDampingAttempts; ++attempt, lambda *= kDampingGrowth)
     if (solveEnvelopeCholesky(H, lambda, rhs, &x)) return x;
   return VectorXd::Zero(rhs.size());
 }
@@ -187,16 +205,31 @@ double heading(const SO3& R, const Vec3& body_axis) {
   return std::atan2(d.y(), d.x());
 }
 
+/// Re-anchoring (METHOD.md §5): rotate about z and shift all states so that
+/// the oldest keeps its yaw (its whole attitude with Gauge::kPose) and position.
+void reanchor(const NavState& oldest_before, Window* w) {
+  const Vec3 axis = mostHorizontalAxis(oldest_before.R_w_b);
+  const SO3& R_now = w->states.front().x.R_w_b;
+  const SO3 Rz = w->gauge == Gauge::kPose ? oldest_before.R_w_b * R_now.inverse()
+                                          : SO3::exp(Vec3(0, 0, heading(oldest_before.R_w_b, axis) - heading(R_now, axis)));
+  const Vec3 p_new = w->states.front().x.p_w;
+  for (WindowState& st : w->states) {
+    st.x.R_w_b = Rz * st.x.R_w_b;
+    st.x.p_w = Rz * (st.x.p_w - p_new) + oldest_before.p_w;
+    st.x.v_w = Rz * st.x.v_w;
+  }
+}
+
 }  // namespace
 
-double windowCost(const Window& w, const SolverOptions& o) {
+double windowCost(const Window& w, const EstimatorOptions& o) {
   Normal n(w.states.size(), true);
   linearize(w, o, identitySlots(w.states.size()), true, [](const InertialLink&) { return true; },
             [](const VisualLink&) { return true; }, &n);
   return n.cost;
 }
 
-SolveSummary solve(Window* w, const SolverOptions& o) {
+SolveSummary solve(Window* w, const EstimatorOptions& o) {
   SolveSummary s;
   const std::size_t N = w->states.size();
   if (N == 0) return s;
@@ -207,42 +240,29 @@ SolveSummary solve(Window* w, const SolverOptions& o) {
     linearize(*w, o, slots, true, [](const InertialLink&) { return true; }, [](const VisualLink&) { return true; }, &n);
     if (it == 0) s.initial_cost = n.cost;
     double damping = o.damping;
-    if (o.fix_gauge && o.gauge_prior) {
+    if (w->gauge != Gauge::kNone && o.gauge_prior) {
       // Zero residual, so only H changes: the step leaves the gauge directions
       // alone. Its stiffness is relative to the system's, and the damping is
       // scaled back so that it stays what it was without the prior.
-      const double stiffness = 1e3 * std::max(1.0, n.H.diagonal().cwiseAbs().maxCoeff());
+      const double stiffness = kGaugeStiffness * std::max(1.0, n.H.diagonal().cwiseAbs().maxCoeff());
       n.H.block<3, 3>(imu::kP, imu::kP) += Mat3::Identity() * stiffness;
       const Vec3 up = w->states.front().x.R_w_b.inverse() * Vec3::UnitZ();  // world yaw in the body's δθ
-      n.H.block<3, 3>(imu::kR, imu::kR) += (o.gauge_full_rotation ? Mat3::Identity() : Mat3(up * up.transpose())) * stiffness;
-      damping *= 1e-3;
+      n.H.block<3, 3>(imu::kR, imu::kR) += (w->gauge == Gauge::kPose ? Mat3::Identity() : Mat3(up * up.transpose())) * stiffness;
+      damping *= 1.0 / kGaugeStiffness;
     }
     const VectorXd step = perturbedCholeskySolve(n.H, -n.g, damping);
     if (!step.allFinite()) break;
     const NavState oldest = w->states.front().x;
     for (std::size_t k = 0; k < N; ++k) w->states[k].x = boxplus(w->states[k].x, step.segment<15>(15 * static_cast<long>(k)));
-    if (o.fix_gauge && !o.gauge_prior) {
-      // Re-anchor: rotate about z and shift so the oldest state keeps its yaw
-      // and position; roll and pitch stay free (observable through gravity).
-      const Vec3 axis = mostHorizontalAxis(oldest.R_w_b);
-      const SO3 Rz = o.gauge_full_rotation
-                         ? oldest.R_w_b * w->states.front().x.R_w_b.inverse()
-                         : SO3::exp(Vec3(0, 0, heading(oldest.R_w_b, axis) - heading(w->states.front().x.R_w_b, axis)));
-      const Vec3 p_new = w->states.front().x.p_w;
-      for (WindowState& st : w->states) {
-        st.x.R_w_b = Rz * st.x.R_w_b;
-        st.x.p_w = Rz * (st.x.p_w - p_new) + oldest.p_w;
-        st.x.v_w = Rz * st.x.v_w;
-      }
-    }
+    if (w->gauge != Gauge::kNone && !o.gauge_prior) reanchor(oldest, w);
     ++s.iterations;
-    if (step.norm() < o.min_step) break;
+    if (step.norm() < kNegligibleStep) break;
   }
   s.final_cost = windowCost(*w, o);
   return s;
 }
 
-void marginalize(Window* w, std::size_t k, const SolverOptions& o) {
+void marginalize(Window* w, std::size_t k, const EstimatorOptions& o) {
   // The states that share a link with k, and those of the old prior.
   std::vector<std::size_t> involved = {k};
   const auto addState = [&](std::size_t i) {
@@ -263,7 +283,7 @@ void marginalize(Window* w, std::size_t k, const SolverOptions& o) {
   // Schur complement on the first 15 rows/columns (state k), eqs 20-21.
   const long m = 15, r = n.H.rows() - m;
   const MatrixXd Hmm = n.H.topLeftCorner(m, m), Hrm = n.H.bottomLeftCorner(r, m), Hrr = n.H.bottomRightCorner(r, r);
-  const Eigen::LDLT<MatrixXd> Hmm_ldlt(Hmm + MatrixXd::Identity(m, m) * 1e-12);
+  const Eigen::LDLT<MatrixXd> Hmm_ldlt(Hmm + MatrixXd::Identity(m, m) * kMarginalRegulariser);
   MarginalPrior prior;
   prior.H = Hrr - Hrm * Hmm_ldlt.solve(Hrm.transpose());
   prior.H = 0.5 * (prior.H + prior.H.transpose());

@@ -13,6 +13,7 @@
 // (world translation, rotation about gravity) then stay out of the prior.
 #include <vector>
 
+#include "edgevio/estimator/estimator_options.h"
 #include "edgevio/estimator/factors.h"
 #include "edgevio/imu/preintegration.h"
 
@@ -21,7 +22,6 @@ namespace edgevio::estimator {
 struct WindowState {
   std::int64_t t_ns = 0;
   imu::NavState x;
-  bool keyframe = false;
 };
 
 /// Preintegration between states i and j (indices into Window::states).
@@ -50,30 +50,19 @@ struct MarginalPrior {
   bool empty() const { return states.empty(); }
 };
 
+/// What the gauge holds of the oldest state (METHOD.md §5): with the IMU,
+/// its position and yaw (roll and pitch are observable through gravity);
+/// without it, its whole pose; nothing when the prior already anchors the
+/// window (a test problem).
+enum class Gauge { kPositionYaw, kPose, kNone };
+
 struct Window {
   std::vector<WindowState> states;
   std::vector<InertialLink> inertial;
   std::vector<VisualLink> visual;
   MarginalPrior prior;
   geometry::SE3 T_b_c;  ///< body → camera whose relative poses the visual links measure
-};
-
-/// Options of the window solver (config section `estimator` when wired in).
-struct SolverOptions {
-  int max_iterations = 4;          ///< Gauss-Newton iterations per solve [-]
-  double huber_translation_m = 0.1;  ///< c_t of eq 24 [m]
-  double huber_rotation_deg = 2.0;   ///< c_a of eq 25 [deg]
-  double damping = 1e-9;             ///< first multiple of the identity tried by the perturbed Cholesky [-]
-  bool fix_gauge = true;             ///< hold the oldest state's position and yaw (METHOD.md §5): re-anchoring, or gauge_prior
-  bool gauge_full_rotation = false;  ///< re-anchor its whole attitude too (no IMU: roll and pitch are unobservable)
-  double min_step = 1e-9;            ///< stop when the step norm is below this [-]
-  /// Gauge by a stiff zero-residual prior on the oldest state's position and
-  /// yaw (all of its attitude with gauge_full_rotation) instead of moving the
-  /// states after each step.
-  bool gauge_prior = false;
-  /// Jacobians of the states in the marginalisation prior at the prior's
-  /// linearisation point (first-estimate Jacobians), residuals at the estimate.
-  bool first_estimate_jacobians = false;
+  Gauge gauge = Gauge::kPositionYaw;
 };
 
 struct SolveSummary {
@@ -88,12 +77,13 @@ imu::NavState boxplus(const imu::NavState& x, const Eigen::Ref<const imu::Vec15>
 imu::Vec15 boxminus(const imu::NavState& x, const imu::NavState& x0);
 
 /// Total cost of the window at its current estimate (Huber-weighted).
-double windowCost(const Window& w, const SolverOptions& o);
+double windowCost(const Window& w, const EstimatorOptions& o);
 
-/// Gauss-Newton on the window.
-SolveSummary solve(Window* w, const SolverOptions& o);
+/// Gauss-Newton on the window: o.max_iterations steps at most, fewer once a
+/// step is negligible.
+SolveSummary solve(Window* w, const EstimatorOptions& o);
 
 /// Removes state `index`, folding its links and the old prior into a new prior.
-void marginalize(Window* w, std::size_t index, const SolverOptions& o);
+void marginalize(Window* w, std::size_t index, const EstimatorOptions& o);
 
 }  // namespace edgevio::estimator

@@ -9,34 +9,54 @@
 //          (‖Δp‖/front_translation_m + angle/front_rotation_deg < 1);
 //   back:  otherwise remove the oldest state.
 // States are identified by their timestamps, so the tracker and the
-// estimator share no indices. Without the IMU (mode edge+loop) the same
-// window is a pose graph: states are joined by tracking and loop links only,
-// and the gauge holds the oldest state's whole pose.
+// estimator share no indices; which states are keyframes the caller says
+// (it owns the keyframes). When the estimate blows up, the estimator restarts
+// its window at the newest state by itself and says so. Without the IMU (mode
+// edge+loop) the same window is a pose graph: states are joined by tracking
+// and loop links only, and the gauge holds the oldest state's whole pose.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
-#include "edgevio/camera/calibration.h"
 #include "edgevio/estimator/estimator_options.h"
 #include "edgevio/estimator/external_check.h"
 #include "edgevio/estimator/sliding_window.h"
+#include "edgevio/imu/imu_types.h"
 
 namespace edgevio::estimator {
 
-/// What one optimisation step did (a row of frames.csv).
+/// Which end of the window marginalisation took a state from.
+enum class Marginalization { kNone, kFront, kBack };
+inline constexpr options::Choice<Marginalization> kMarginalizationChoices[] = {
+    {Marginalization::kNone, "-", "the window was not full"},
+    {Marginalization::kFront, "front", "the second-newest state (close to the keyframe, not a keyframe)"},
+    {Marginalization::kBack, "back", "the oldest state"}};
+
+/// What the two-way rule needs to know of the keyframes (METHOD.md §5).
+struct KeyframeQuery {
+  std::optional<std::int64_t> current;                ///< the keyframe frames are tracked against
+  std::function<bool(std::int64_t)> is_keyframe;      ///< whether the state at a time is a keyframe
+};
+
+/// What one optimisation step did.
 struct EstimatorUpdate {
   int iterations = 0;
   double initial_cost = 0.0, final_cost = 0.0;
   double solve_ms = 0.0, marginalize_ms = 0.0;
-  std::string marginalized = "-";  ///< front | back | - (window not full)
-  bool keyframe_left_window = false;  ///< the current keyframe was marginalised
-  std::string reset_reason;           ///< non-empty: the estimate blew up and must be reinitialised
+  Marginalization marginalized = Marginalization::kNone;
+  std::int64_t marginalized_t_ns = -1;  ///< the state that left the window
+  /// Non-empty: the estimate blew up (why), and the window restarted at the newest state.
+  std::string reset_reason;
 };
 
 class VioEstimator {
  public:
-  VioEstimator(const EstimatorOptions& options, const camera::ImuNoise& noise, const geometry::SE3& T_b_c,
-               bool inertial = true);
+  /// `start_gyro_bias`: what a reset falls back to when the gyroscope bias
+  /// estimate is implausible (the static start's).
+  VioEstimator(const EstimatorOptions& options, const imu::ImuNoise& noise, const geometry::SE3& T_b_c, bool inertial,
+               const Vec3& start_gyro_bias = Vec3::Zero());
   bool inertial() const { return inertial_; }
 
   /// Starts a new window with one state. `velocity_known`: x's velocity and
@@ -46,6 +66,10 @@ class VioEstimator {
   /// initial prior says so.
   void initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known, bool attitude_known);
   bool initialized() const { return !window_.states.empty(); }
+  /// Restarts the window at t_ns after the inertial chain broke (an IMU gap):
+  /// the newest state's attitude and biases carry over at the pose T_w_b, the
+  /// velocity is estimated anew.
+  void restartAfterGap(std::int64_t t_ns, const geometry::SE3& T_w_b);
 
   const imu::NavState& newest() const { return window_.states.back().x; }
   std::int64_t newestTime() const { return window_.states.back().t_ns; }
@@ -55,11 +79,10 @@ class VioEstimator {
 
   /// Preintegrates the IMU from the newest state to t_ns at its biases;
   /// nullopt without IMU coverage or across a gap longer than max_imu_gap_s.
-  std::optional<imu::Preintegration> preintegrateTo(const std::vector<io::ImuSample>& imu, std::int64_t t_ns) const;
+  std::optional<imu::Preintegration> preintegrateTo(const std::vector<imu::ImuSample>& imu, std::int64_t t_ns) const;
 
-  /// Appends a state at t_ns linked to the newest by `pre`, initialised at
-  /// the IMU prediction (then at `pose` when given: the tracker's estimate).
-  void addState(std::int64_t t_ns, imu::Preintegration pre, const std::optional<geometry::SE3>& T_w_b = std::nullopt);
+  /// Appends a state at t_ns linked to the newest by `pre`, initialised at the IMU prediction.
+  void addState(std::int64_t t_ns, imu::Preintegration pre);
 
   /// Appends a state at the given pose without an inertial link (no IMU).
   void addStateWithoutImu(std::int64_t t_ns, const geometry::SE3& T_w_b);
@@ -79,22 +102,24 @@ class VioEstimator {
   /// nullopt when the reference state is not in the window (any more).
   std::optional<ExternalCheckResult> offerTrackingLink(std::int64_t t_ref_ns, const geometry::SE3& T_nr, const Mat6& covariance);
 
-  void markKeyframe(std::int64_t t_ns);
-
   /// Gauss-Newton on the window, then marginalisation when it holds more
-  /// than N states. `alignment_good` and `keyframe_t_ns` drive the two-way rule.
-  EstimatorUpdate optimize(bool alignment_good, std::optional<std::int64_t> keyframe_t_ns);
+  /// than N states (the two-way rule: `alignment_good`, `keyframes`). When
+  /// the estimate blew up, the window restarts at the newest state, placed at
+  /// `restart_pose`, with its implausible velocity and biases reset.
+  EstimatorUpdate optimize(bool alignment_good, const KeyframeQuery& keyframes, const geometry::SE3& restart_pose);
 
  private:
   std::optional<std::size_t> indexOf(std::int64_t t_ns) const;
   std::string checkHealth() const;
-
-  SolverOptions solverOptions() const;
+  void restartAfterBlowUp(const geometry::SE3& pose);
   bool addVisualLink(std::size_t r, std::size_t n, const geometry::SE3& T_nr, const Mat6& covariance);
+  /// The state two-way marginalisation removes (METHOD.md §5).
+  std::size_t marginalizationVictim(bool alignment_good, const KeyframeQuery& keyframes) const;
 
   EstimatorOptions options_;
-  camera::ImuNoise noise_;  ///< the calibration's densities times the *_inflation options
+  imu::ImuNoise noise_;  ///< the calibration's densities times the *_inflation options
   bool inertial_ = true;
+  Vec3 start_gyro_bias_;
   Window window_;
   imu::NavState predicted_newest_;  ///< IMU prediction of the newest state, for the external check
 };

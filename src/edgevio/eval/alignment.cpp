@@ -5,25 +5,6 @@
 
 namespace edgevio::eval {
 
-bool parseAlignment(const std::string& name, AlignmentKind* out) {
-  if (name == "se3") *out = AlignmentKind::kSe3;
-  else if (name == "sim3") *out = AlignmentKind::kSim3;
-  else if (name == "posyaw") *out = AlignmentKind::kPosYaw;
-  else if (name == "none") *out = AlignmentKind::kNone;
-  else return false;
-  return true;
-}
-
-std::string alignmentName(AlignmentKind kind) {
-  switch (kind) {
-    case AlignmentKind::kSe3: return "se3";
-    case AlignmentKind::kSim3: return "sim3";
-    case AlignmentKind::kPosYaw: return "posyaw";
-    case AlignmentKind::kNone: return "none";
-  }
-  return "none";
-}
-
 std::size_t minimumPoses(AlignmentKind kind) {
   switch (kind) {
     case AlignmentKind::kSe3:

@@ -10,15 +10,19 @@
 #include <string>
 #include <vector>
 
+#include "edgevio/common/options.h"
 #include "edgevio/geometry/se3.h"
 
 namespace edgevio::eval {
 
 enum class AlignmentKind { kSe3, kSim3, kPosYaw, kNone };
+inline constexpr options::Choice<AlignmentKind> kAlignmentChoices[] = {
+    {AlignmentKind::kSe3, "se3", "rotation and translation (Umeyama)"},
+    {AlignmentKind::kSim3, "sim3", "rotation, translation and scale (Umeyama)"},
+    {AlignmentKind::kPosYaw, "posyaw", "translation and rotation about gravity (4-DoF)"},
+    {AlignmentKind::kNone, "none", "identity"}};
 
-/// "se3" | "sim3" | "posyaw" | "none"; false if unknown.
-bool parseAlignment(const std::string& name, AlignmentKind* out);
-std::string alignmentName(AlignmentKind kind);
+inline std::string alignmentName(AlignmentKind kind) { return options::nameOf(kAlignmentChoices, kind); }
 /// Fewest associated poses each kind needs (3 points fix a rotation, 2 a yaw).
 std::size_t minimumPoses(AlignmentKind kind);
 

@@ -123,7 +123,7 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
   std::size_t failures = 0;
   for (const auto& r : runs) failures += !r.ok;
   out << "# edgevio evaluation report\n\n"
-      << runs.size() << " runs, " << failures << " failed. ATE after " << options.alignment
+      << runs.size() << " runs, " << failures << " failed. ATE after " << alignmentName(options.alignment)
       << " alignment; ARE over segments of ";
   if (options.are_segments_m.empty()) {
     for (std::size_t i = 0; i < options.are_segments_percent.size(); ++i)

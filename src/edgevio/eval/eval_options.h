@@ -1,31 +1,37 @@
 #pragma once
-#include <string>
 #include <vector>
+
+#include "edgevio/common/options.h"
+#include "edgevio/eval/alignment.h"
 
 namespace edgevio::eval {
 
-/// Options of trajectory evaluation (config section `eval`; METHOD.md §8).
+/// Trajectory evaluation (config section `eval`; METHOD.md §8).
 struct EvalOptions {
-  /// Largest |t_est − t_gt| for two poses to be associated. [s]
-  double association_tolerance_s = 0.01;
-  /// Alignment before ATE: se3 (Umeyama, no scale), sim3, posyaw (4-DoF) or none.
-  std::string alignment = "se3";
-  /// Travelled-distance deltas of the RPE (evo convention). [m]
-  std::vector<double> rpe_deltas_m = {1.0, 5.0};
-  /// ARE segment lengths as percentages of the trajectory length (used when are_segments_m is empty). [%]
-  std::vector<double> are_segments_percent = {10.0, 20.0, 30.0, 40.0, 50.0};
-  /// ARE segment lengths in metres; when non-empty they replace the percentages. [m]
-  std::vector<double> are_segments_m = {};
+  double association_tolerance_s;
+  AlignmentKind alignment;
+  std::vector<double> rpe_deltas_m;
+  std::vector<double> are_segments_percent;
+  std::vector<double> are_segments_m;
 
-  template <class Visitor>
-  void visit(Visitor& v) {
-    v("association_tolerance_s", association_tolerance_s, "s", "largest |t_est - t_gt| for two poses to be matched");
-    v("alignment", alignment, "-", "alignment before ATE: se3 | sim3 | posyaw | none");
-    v("rpe_deltas_m", rpe_deltas_m, "m", "travelled-distance deltas of the RPE (evo pairing)");
-    v("are_segments_percent", are_segments_percent, "%", "ARE segment lengths, percent of trajectory length");
-    v("are_segments_m", are_segments_m, "m", "ARE segment lengths in metres; non-empty replaces the percentages");
-  }
-  std::string validate() const;
+  EvalOptions() { options::setDefaults(*this); }
+  static const options::Table<EvalOptions>& table();
 };
+
+inline const options::Table<EvalOptions>& EvalOptions::table() {
+  using S = EvalOptions;
+  using namespace options;
+  static const Table<S> t{{
+      number("association_tolerance_s", &S::association_tolerance_s, 0.01, "s", "largest |t_est - t_gt| for two poses to be matched",
+             above(0)),
+      choice("alignment", &S::alignment, AlignmentKind::kSe3, kAlignmentChoices, "alignment of the estimate before the ATE"),
+      number("rpe_deltas_m", &S::rpe_deltas_m, {1.0, 5.0}, "m", "travelled-distance deltas of the RPE (evo's pairing)", above(0)),
+      number("are_segments_percent", &S::are_segments_percent, {10.0, 20.0, 30.0, 40.0, 50.0}, "%",
+             "ARE segment lengths in percent of the trajectory's length", Range{0, 100, true, false}),
+      number("are_segments_m", &S::are_segments_m, {}, "m", "ARE segment lengths in metres; when not empty they replace the percentages",
+             above(0)),
+  }};
+  return t;
+}
 
 }  // namespace edgevio::eval

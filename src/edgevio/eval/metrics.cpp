@@ -96,8 +96,7 @@ AreResult averageRelativeError(const std::vector<SE3>& gt, const std::vector<SE3
 
 EvalResult evaluate(const io::Trajectory& gt, const io::Trajectory& est, const EvalOptions& options) {
   EvalResult r;
-  if (!parseAlignment(options.alignment, &r.alignment))
-    throw InputError("unknown alignment '" + options.alignment + "' (expected se3, sim3, posyaw or none)");
+  r.alignment = options.alignment;
   if (gt.empty() || est.empty()) throw InputError("empty trajectory");
   const auto tol = static_cast<std::int64_t>(std::llround(options.association_tolerance_s * 1e9));
   const Association a = associate(gt, est, tol);

@@ -8,9 +8,9 @@ namespace edgevio::imu {
 using geometry::SO3;
 
 namespace {
-io::ImuSample interpolate(const io::ImuSample& a, const io::ImuSample& b, std::int64_t t) {
+ImuSample interpolate(const ImuSample& a, const ImuSample& b, std::int64_t t) {
   const double w = b.t_ns == a.t_ns ? 0.0 : static_cast<double>(t - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns);
-  io::ImuSample s;
+  ImuSample s;
   s.t_ns = t;
   s.gyro = (1.0 - w) * a.gyro + w * b.gyro;
   s.accel = (1.0 - w) * a.accel + w * b.accel;
@@ -18,15 +18,15 @@ io::ImuSample interpolate(const io::ImuSample& a, const io::ImuSample& b, std::i
 }
 }  // namespace
 
-bool forEachImuInterval(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::int64_t t1,
+bool forEachImuInterval(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1,
                         const std::function<void(double, const Vec3&, const Vec3&, const Vec3&, const Vec3&)>& f) {
   if (imu.size() < 2 || t1 <= t0 || imu.front().t_ns > t0 || imu.back().t_ns < t1) return false;
-  auto it = std::upper_bound(imu.begin(), imu.end(), t0, [](std::int64_t t, const io::ImuSample& s) { return t < s.t_ns; });
+  auto it = std::upper_bound(imu.begin(), imu.end(), t0, [](std::int64_t t, const ImuSample& s) { return t < s.t_ns; });
   // it: first sample after t0; the interval [t0, t1] is cut at every sample inside it.
-  io::ImuSample prev = interpolate(*(it - 1), *it, t0);
+  ImuSample prev = interpolate(*(it - 1), *it, t0);
   while (prev.t_ns < t1) {
     const std::int64_t t_next = std::min(it->t_ns, t1);
-    const io::ImuSample next = t_next == it->t_ns ? *it : interpolate(*(it - 1), *it, t_next);
+    const ImuSample next = t_next == it->t_ns ? *it : interpolate(*(it - 1), *it, t_next);
     f(static_cast<double>(next.t_ns - prev.t_ns) * 1e-9, prev.accel, prev.gyro, next.accel, next.gyro);
     prev = next;
     if (t_next == it->t_ns && it + 1 != imu.end()) ++it;
@@ -34,7 +34,7 @@ bool forEachImuInterval(const std::vector<io::ImuSample>& imu, std::int64_t t0, 
   return true;
 }
 
-bool integrateGyro(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::int64_t t1, const Vec3& bias, SO3* R) {
+bool integrateGyro(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1, const Vec3& bias, SO3* R) {
   SO3 acc;
   const bool ok = forEachImuInterval(imu, t0, t1, [&](double dt, const Vec3&, const Vec3& w0, const Vec3&, const Vec3& w1) {
     acc = acc * SO3::exp((0.5 * (w0 + w1) - bias) * dt);
@@ -43,7 +43,7 @@ bool integrateGyro(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::
   return ok;
 }
 
-StaticInit staticInitialization(const std::vector<io::ImuSample>& imu, std::int64_t t0, double window_s,
+StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t t0, double window_s,
                                 double accel_std_max, double gyro_std_max) {
   // Motion is judged on 0.1 s means: rotor vibration (a standing drone reads
   // ~1 m/s² of spread per sample) averages out, real motion does not.

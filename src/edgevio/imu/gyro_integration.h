@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "edgevio/geometry/so3.h"
-#include "edgevio/io/imu_sample.h"
+#include "edgevio/imu/imu_types.h"
 
 namespace edgevio::imu {
 
@@ -17,13 +17,13 @@ namespace edgevio::imu {
 /// consecutive readings that cuts [t0, t1], the end readings interpolated
 /// linearly at t0 and t1 (the one place the IMU stream is cut at frame
 /// times). Returns false, calling nothing, without IMU coverage of [t0, t1].
-bool forEachImuInterval(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns,
+bool forEachImuInterval(const std::vector<ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns,
                         const std::function<void(double, const Vec3&, const Vec3&, const Vec3&, const Vec3&)>& f);
 
 /// R_{b(t0) b(t1)}: body rotation from t0 to t1, Π exp((ω̄ − b_g)·Δt) with ω̄ the
 /// mean of consecutive samples (midpoint rule), samples clipped to [t0, t1] by
 /// linear interpolation. Returns false (and identity) without IMU coverage.
-bool integrateGyro(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns, const Vec3& gyro_bias,
+bool integrateGyro(const std::vector<ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns, const Vec3& gyro_bias,
                    geometry::SO3* R_b0_b1);
 
 struct StaticInit {
@@ -36,7 +36,7 @@ struct StaticInit {
 
 /// Uses the IMU samples in [t0, t0 + window]; static when the spread of the
 /// 0.1 s means is below accel_std_max [m/s²] and gyro_std_max [rad/s].
-StaticInit staticInitialization(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, double window_s,
+StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t t0_ns, double window_s,
                                 double accel_std_max, double gyro_std_max);
 
 }  // namespace edgevio::imu

@@ -9,7 +9,7 @@ namespace edgevio::imu {
 using geometry::hat;
 using geometry::SO3;
 
-Preintegration::Preintegration(const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& n) : b_a_(b_a), b_g_(b_g) {
+Preintegration::Preintegration(const Vec3& b_a, const Vec3& b_g, const ImuNoise& n) : b_a_(b_a), b_g_(b_g) {
   // Continuous densities σ [unit/√Hz]; the discrete variances σ²/δt (white)
   // and σ²·δt (random walk) are formed in propagate() with each step's δt.
   Q_.block<3, 3>(0, 0) = Mat3::Identity() * n.accel_noise_density * n.accel_noise_density;
@@ -130,11 +130,11 @@ Vec15 Preintegration::residual(const NavState& i, const NavState& j, Mat15* J_i,
   return r;
 }
 
-std::optional<Preintegration> preintegrate(const std::vector<io::ImuSample>& imu, std::int64_t t0, std::int64_t t1,
-                                           const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise, double max_gap_s) {
+std::optional<Preintegration> preintegrate(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1,
+                                           const Vec3& b_a, const Vec3& b_g, const ImuNoise& noise, double max_gap_s) {
   // A gap is judged on the raw readings around [t0, t1]: cut at frame times,
   // interpolation would bridge it in frame-length pieces.
-  const auto byTime = [](const io::ImuSample& s, std::int64_t t) { return s.t_ns < t; };
+  const auto byTime = [](const ImuSample& s, std::int64_t t) { return s.t_ns < t; };
   auto it = std::lower_bound(imu.begin(), imu.end(), t0, byTime);
   if (it != imu.begin()) --it;
   for (; it != imu.end() && it + 1 != imu.end() && it->t_ns < t1; ++it)
@@ -145,6 +145,21 @@ std::optional<Preintegration> preintegrate(const std::vector<io::ImuSample>& imu
   });
   if (!covered) return std::nullopt;
   return p;
+}
+
+NavState predictState(const NavState& r, const Preintegration& pre) {
+  // Deltas corrected to first order for r's biases (as in the residual).
+  const Vec3 dba = r.b_a - pre.linearizationBa(), dbg = r.b_g - pre.linearizationBg();
+  const Mat15& J = pre.jacobian();
+  const Vec3 alpha = pre.alpha() + J.block<3, 3>(kP, kBa) * dba + J.block<3, 3>(kP, kBg) * dbg;
+  const Vec3 beta = pre.beta() + J.block<3, 3>(kV, kBa) * dba + J.block<3, 3>(kV, kBg) * dbg;
+  const geometry::SO3 gamma = pre.gamma() * geometry::SO3::exp(J.block<3, 3>(kR, kBg) * dbg);
+  const double T = pre.deltaT();
+  NavState n = r;
+  n.R_w_b = r.R_w_b * gamma;
+  n.p_w = r.p_w + r.v_w * T - 0.5 * gravity() * T * T + (r.R_w_b * alpha);
+  n.v_w = r.v_w - gravity() * T + (r.R_w_b * beta);
+  return n;
 }
 
 }  // namespace edgevio::imu

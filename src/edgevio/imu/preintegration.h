@@ -18,9 +18,8 @@
 #include <optional>
 #include <vector>
 
-#include "edgevio/camera/calibration.h"
 #include "edgevio/geometry/so3.h"
-#include "edgevio/io/imu_sample.h"
+#include "edgevio/imu/imu_types.h"
 
 namespace edgevio::imu {
 
@@ -41,7 +40,7 @@ class Preintegration {
  public:
   /// Biases are the linearisation point; `noise` holds the densities the
   /// covariance is propagated with (the estimator passes them inflated).
-  Preintegration(const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise);
+  Preintegration(const Vec3& b_a, const Vec3& b_g, const ImuNoise& noise);
 
   /// Adds the interval between two consecutive IMU readings (dt in seconds).
   void integrate(double dt, const Vec3& acc0, const Vec3& gyr0, const Vec3& acc1, const Vec3& gyr1);
@@ -85,9 +84,14 @@ class Preintegration {
 /// Preintegration of the readings between t0 and t1 (cut by
 /// forEachImuInterval); nullopt without IMU coverage of [t0, t1] or when two
 /// consecutive readings are more than max_gap_s apart (a gap is not bridged).
-std::optional<Preintegration> preintegrate(const std::vector<io::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns,
-                                           const Vec3& b_a, const Vec3& b_g, const camera::ImuNoise& noise,
+std::optional<Preintegration> preintegrate(const std::vector<ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns,
+                                           const Vec3& b_a, const Vec3& b_g, const ImuNoise& noise,
                                            double max_gap_s = 1.0);
+
+/// The IMU's prediction of state j from state i (METHOD.md §4), with the
+/// deltas corrected to first order for i's biases as in the residual:
+/// p_j = p_i + v_i Δt − ½gΔt² + R_i α̂, v_j = v_i − gΔt + R_i β̂, R_j = R_i γ̂.
+NavState predictState(const NavState& i, const Preintegration& pre);
 
 /// Gravity in the world frame as the propagation subtracts it (METHOD.md §2).
 inline Vec3 gravity() { return Vec3(0.0, 0.0, 9.81); }

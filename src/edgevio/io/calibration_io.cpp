@@ -42,7 +42,7 @@ void readIntrinsics(const YAML::Node& node, const std::string& path, const char*
   if (!err.empty()) throw InputError(path, yamlLine(node), "invalid camera: " + err);
 }
 
-void readImuNoise(const YAML::Node& node, const std::string& path, camera::ImuNoise* imu) {
+void readImuNoise(const YAML::Node& node, const std::string& path, imu::ImuNoise* imu) {
   imu->gyro_noise_density = yamlDouble(node, "gyroscope_noise_density", path);
   imu->gyro_random_walk = yamlDouble(node, "gyroscope_random_walk", path);
   imu->accel_noise_density = yamlDouble(node, "accelerometer_noise_density", path);

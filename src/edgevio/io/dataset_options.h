@@ -1,23 +1,27 @@
 #pragma once
-#include <string>
+#include "edgevio/common/options.h"
 
 namespace edgevio::io {
 
-/// Options of the EuRoC/ASL dataset reader (config section `dataset`).
+/// Reading a dataset (config section `dataset`).
 struct DatasetOptions {
-  /// Largest |t_cam0 − t_cam1| for two images to form a stereo pair. [s]
-  double stereo_sync_tolerance_s = 0.003;
-  /// An IMU gap longer than this is reported as a warning. [s]
-  double imu_gap_warning_s = 0.025;
+  double stereo_sync_tolerance_s;
+  double imu_gap_warning_s;
 
-  template <class Visitor>
-  void visit(Visitor& v) {
-    v("stereo_sync_tolerance_s", stereo_sync_tolerance_s, "s",
-      "largest |t_cam0 - t_cam1| for two images to form a stereo pair");
-    v("imu_gap_warning_s", imu_gap_warning_s, "s", "an IMU gap longer than this is reported as a warning");
-  }
-  /// Empty when valid, else what is wrong.
-  std::string validate() const;
+  DatasetOptions() { options::setDefaults(*this); }
+  static const options::Table<DatasetOptions>& table();
 };
+
+inline const options::Table<DatasetOptions>& DatasetOptions::table() {
+  using S = DatasetOptions;
+  using namespace options;
+  static const Table<S> t{{
+      number("stereo_sync_tolerance_s", &S::stereo_sync_tolerance_s, 0.003, "s",
+             "largest |t_cam0 - t_cam1| for two images to form a stereo pair", halfOpen(0, 0.5)),
+      number("imu_gap_warning_s", &S::imu_gap_warning_s, 0.025, "s", "an IMU gap longer than this is reported as a warning",
+             above(0)),
+  }};
+  return t;
+}
 
 }  // namespace edgevio::io

@@ -19,7 +19,9 @@ namespace fs = std::filesystem;
 EurocDataset::EurocDataset(const std::string& root, const DatasetOptions& options) : options_(options) {
   const fs::path r(root);
   if (!fs::is_directory(r)) throw InputError(root, 0, "dataset folder not found (expected an EuRoC ASL folder with mav0/)");
-  mav0_ = fs::is_directory(r / "mav0") ? (r / "mav0").string() : r.string();
+  fs::path mav0 = (fs::is_directory(r / "mav0") ? r / "mav0" : r).lexically_normal();
+  if (mav0.filename().empty()) mav0 = mav0.parent_path();  // a trailing separator
+  mav0_ = mav0.string();
   for (const char* sub : {"cam0", "cam1", "imu0"})
     if (!fs::is_directory(fs::path(mav0_) / sub))
       throw InputError(mav0_, 0, std::string("missing folder '") + sub + "' (expected the EuRoC ASL layout mav0/{cam0,cam1,imu0})");
@@ -131,6 +133,21 @@ std::optional<cv::Mat> EurocDataset::loadImage(int cam, const ImageRecord& rec) 
                          std::to_string(cam) + "/sensor.yaml says " + std::to_string(m.width) + "x" +
                          std::to_string(m.height) + " (fix the resolution in the calibration or the images)");
   return img;
+}
+
+std::string EurocDataset::name() const { return fs::path(mav0_).parent_path().filename().string(); }
+
+std::string EurocDataset::location() const { return fs::absolute(fs::path(mav0_).parent_path()).lexically_normal().string(); }
+
+std::function<cv::Mat()> EurocDataset::rightImageLoader(std::size_t i) const {
+  return [path = pairs_.at(i).right.path, width = rig_.cam[1].width, height = rig_.cam[1].height] {
+    cv::Mat raw = decodeGrayImage(path);
+    return raw.cols == width && raw.rows == height ? raw : cv::Mat();
+  };
+}
+
+std::unique_ptr<Sequence> openSequence(const std::string& path, const DatasetOptions& options) {
+  return std::make_unique<EurocDataset>(path, options);
 }
 
 std::optional<StereoImages> EurocDataset::loadStereo(std::size_t i) {

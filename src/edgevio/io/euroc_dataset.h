@@ -19,8 +19,9 @@
 #include <vector>
 
 #include "edgevio/camera/calibration.h"
+#include "edgevio/imu/imu_types.h"
 #include "edgevio/io/dataset_options.h"
-#include "edgevio/io/imu_sample.h"
+#include "edgevio/io/sequence.h"
 #include "edgevio/io/trajectory_io.h"
 
 namespace edgevio::io {
@@ -42,18 +43,25 @@ struct StereoImages {
   cv::Mat left, right;
 };
 
-class EurocDataset {
+class EurocDataset final : public Sequence {
  public:
   /// `root` is the folder that holds mav0/ (or mav0 itself). Throws InputError.
   EurocDataset(const std::string& root, const DatasetOptions& options);
 
-  const camera::StereoRig& calibration() const { return rig_; }
+  // Sequence
+  std::string name() const override;
+  std::string location() const override;
+  const camera::StereoRig& calibration() const override { return rig_; }
+  const std::vector<imu::ImuSample>& imu() const override { return imu_; }
+  const Trajectory& groundTruth() const override { return ground_truth_; }
+  std::size_t frameCount() const override { return pairs_.size(); }
+  std::int64_t frameTime(std::size_t i) const override { return pairs_.at(i).t_ns; }
+  std::optional<cv::Mat> leftImage(std::size_t i) override { return loadImage(i, 0); }
+  std::function<cv::Mat()> rightImageLoader(std::size_t i) const override;
+  const std::vector<std::string>& warnings() const override { return warnings_; }
+  std::size_t unreadableImages() const override { return unreadable_[0] + unreadable_[1]; }
+
   const std::vector<StereoRecord>& stereoPairs() const { return pairs_; }
-  const std::vector<ImuSample>& imu() const { return imu_; }
-  /// Ground truth, empty when the folder has none.
-  const Trajectory& groundTruth() const { return ground_truth_; }
-  /// Warnings collected so far (opening and every loadStereo call).
-  const std::vector<std::string>& warnings() const { return warnings_; }
   const std::string& mav0() const { return mav0_; }
 
   std::size_t cameraRows(int cam) const { return rows_[cam]; }
@@ -81,7 +89,7 @@ class EurocDataset {
   std::string mav0_;
   camera::StereoRig rig_;
   std::vector<StereoRecord> pairs_;
-  std::vector<ImuSample> imu_;
+  std::vector<imu::ImuSample> imu_;
   Trajectory ground_truth_;
   std::vector<std::string> warnings_;
   std::size_t rows_[2] = {0, 0};

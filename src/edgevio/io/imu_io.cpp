@@ -9,13 +9,13 @@
 
 namespace edgevio::io {
 
-std::vector<ImuSample> readImuCsv(const std::string& path, double gap_warning_s, std::vector<std::string>* warnings) {
+std::vector<imu::ImuSample> readImuCsv(const std::string& path, double gap_warning_s, std::vector<std::string>* warnings) {
   TableReader r(path, TableReader::Separator::kComma);
   const auto gap_ns = static_cast<std::int64_t>(std::llround(gap_warning_s * 1e9));
-  std::vector<ImuSample> imu;
+  std::vector<imu::ImuSample> imu;
   while (r.next()) {
     r.requireFields(7, "timestamp [ns],w_x,w_y,w_z,a_x,a_y,a_z");
-    ImuSample s;
+    imu::ImuSample s;
     s.t_ns = r.integer(0);
     s.gyro = Vec3(r.number(1), r.number(2), r.number(3));
     s.accel = Vec3(r.number(4), r.number(5), r.number(6));
@@ -37,7 +37,7 @@ std::vector<ImuSample> readImuCsv(const std::string& path, double gap_warning_s,
   return imu;
 }
 
-void writeImuCsv(const std::string& path, const std::vector<ImuSample>& samples) {
+void writeImuCsv(const std::string& path, const std::vector<imu::ImuSample>& samples) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
   if (!f) throw InputError(path, 0, "cannot open file for writing");
   std::fprintf(f.get(), "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"

@@ -4,15 +4,15 @@
 #include <string>
 #include <vector>
 
-#include "edgevio/io/imu_sample.h"
+#include "edgevio/imu/imu_types.h"
 
 namespace edgevio::io {
 
 /// Reads every row. Malformed rows, NaN/inf and duplicate or decreasing
 /// timestamps are InputError (file and line); gaps longer than gap_warning_s
 /// are appended to `warnings`.
-std::vector<ImuSample> readImuCsv(const std::string& path, double gap_warning_s, std::vector<std::string>* warnings);
+std::vector<imu::ImuSample> readImuCsv(const std::string& path, double gap_warning_s, std::vector<std::string>* warnings);
 
-void writeImuCsv(const std::string& path, const std::vector<ImuSample>& samples);
+void writeImuCsv(const std::string& path, const std::vector<imu::ImuSample>& samples);
 
 }  // namespace edgevio::io

@@ -1,25 +1,29 @@
 #pragma once
-#include <string>
+#include "edgevio/common/options.h"
 
 namespace edgevio::loop {
 
-/// Options of back links (config section `back_links`; see back_links.h).
+/// Back links (config section `back_links`; loop/back_links.h).
 struct BackLinkOptions {
-  int keyframes = 2;                  ///< align each new keyframe back into this many keyframes before it (0: off) [-]
-  double max_disagreement_m = 0.05;   ///< a back link against its initial guess (the estimate): translation [m]
-  double max_disagreement_deg = 1.5;  ///< ... rotation [deg]
+  int keyframes;
+  double max_disagreement_m;
+  double max_disagreement_deg;
 
-  template <class Visitor>
-  void visit(Visitor& v) {
-    v("keyframes", keyframes, "-", "window modes: align each new keyframe's points back into this many keyframes before it (0: off)");
-    v("max_disagreement_m", max_disagreement_m, "m", "a back link must agree with the estimated relative pose within this translation");
-    v("max_disagreement_deg", max_disagreement_deg, "deg", "... and this rotation");
-  }
-  std::string validate() const {
-    if (keyframes < 0) return "keyframes: must be >= 0";
-    if (!(max_disagreement_m > 0 && max_disagreement_deg > 0)) return "max_disagreement_*: must be > 0";
-    return {};
-  }
+  BackLinkOptions() { options::setDefaults(*this); }
+  static const options::Table<BackLinkOptions>& table();
 };
+
+inline const options::Table<BackLinkOptions>& BackLinkOptions::table() {
+  using S = BackLinkOptions;
+  using namespace options;
+  static const Table<S> t{{
+      number("keyframes", &S::keyframes, 2, "-",
+             "window modes: each new keyframe's points are aligned back into this many keyframes before it", atLeast(0)),
+      number("max_disagreement_m", &S::max_disagreement_m, 0.05, "m",
+             "a back link must agree with the estimated relative pose within this translation", above(0)),
+      number("max_disagreement_deg", &S::max_disagreement_deg, 1.5, "deg", "... and this rotation", above(0)),
+  }};
+  return t;
+}
 
 }  // namespace edgevio::loop

@@ -10,20 +10,6 @@ namespace edgevio::loop {
 
 using geometry::SE3;
 
-std::string LoopOptions::validate() const {
-  if (!(max_distance_depth_ratio > 0)) return "max_distance_depth_ratio: must be > 0";
-  if (!(max_view_angle_deg > 0 && max_view_angle_deg <= 180)) return "max_view_angle_deg: in (0, 180]";
-  if (skip_recent_keyframes < 0) return "skip_recent_keyframes: must be >= 0";
-  if (cross_check_level < 0) return "cross_check_level: must be >= 0";
-  if (max_coarse_attempts < 0 || max_full_attempts < 0) return "max_*_attempts: must be >= 0";
-  if (!(max_ms > 0)) return "max_ms: must be > 0";
-  if (!(coarse_max_mean_distance_px > 0)) return "coarse_max_mean_distance_px: must be > 0";
-  if (!(coarse_min_visible_ratio >= 0 && coarse_min_visible_ratio <= 1 && min_visible_ratio >= 0 && min_visible_ratio <= 1))
-    return "*visible_ratio: in [0, 1]";
-  if (!(max_disagreement_m > 0 && max_disagreement_deg > 0)) return "max_disagreement_*: must be > 0";
-  return {};
-}
-
 double medianDepth(const tracking::KeyframeData& k) {
   if (k.depth.points.empty() || k.depth.points[0].empty()) return 0.0;
   std::vector<float> z;
@@ -34,7 +20,7 @@ double medianDepth(const tracking::KeyframeData& k) {
 }
 
 std::vector<LoopLink> closeLoops(const LoopKeyframe& latest, const std::vector<LoopKeyframe>& older, const LoopOptions& o,
-                                 const tracking::AlignmentOptions& alignment, LoopStats* stats_out) {
+                                 const tracking::AlignmentOptions& alignment, double budget_ms, LoopStats* stats_out) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto elapsedMs = [&] { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); };
   LoopStats stats;
@@ -64,7 +50,7 @@ std::vector<LoopLink> closeLoops(const LoopKeyframe& latest, const std::vector<L
   tracking::AlignmentOptions coarse = alignment;
   coarse.self_check_min_visible_ratio = o.coarse_min_visible_ratio;
   for (const Candidate& c : candidates) {
-    if (stats.coarse_attempts >= o.max_coarse_attempts || stats.full_attempts >= o.max_full_attempts || elapsedMs() > o.max_ms)
+    if (stats.coarse_attempts >= o.max_coarse_attempts || stats.full_attempts >= o.max_full_attempts || elapsedMs() > budget_ms)
       break;
     ++stats.coarse_attempts;
     const tracking::KeyframeData& kc = *c.k->data;

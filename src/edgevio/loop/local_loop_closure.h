@@ -36,7 +36,6 @@ struct LoopLink {
 
 struct LoopStats {
   int candidates = 0, coarse_attempts = 0, cross_check_failures = 0, full_attempts = 0, accepted = 0;
-  int window_rejections = 0;  ///< accepted here, then refused by the estimator (its loop check; set by the pipeline)
   double ms = 0.0;
 };
 
@@ -44,8 +43,10 @@ struct LoopStats {
 double medianDepth(const tracking::KeyframeData& keyframe);
 
 /// Loop links from `older` (keyframes in the window, any order) to `latest`.
+/// No new attempt starts after `budget_ms` (real time: loop.realtime_max_ms;
+/// offline: infinity, so that the result does not depend on the machine).
 std::vector<LoopLink> closeLoops(const LoopKeyframe& latest, const std::vector<LoopKeyframe>& older,
-                                 const LoopOptions& options, const tracking::AlignmentOptions& alignment,
+                                 const LoopOptions& options, const tracking::AlignmentOptions& alignment, double budget_ms,
                                  LoopStats* stats = nullptr);
 
 }  // namespace edgevio::loop

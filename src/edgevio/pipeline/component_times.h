@@ -2,6 +2,7 @@
 // Per-component processing times of a run, read back from its frames.csv:
 // the layout of the paper's Table 1 (ms per frame; block matching, back links
 // and loop closure per keyframe), for `edgevio bench` and bench/pipeline_bench.
+// The components are the columns of frameColumns() that name one.
 #include <string>
 #include <vector>
 
@@ -14,8 +15,9 @@ struct ComponentTime {
   std::size_t count = 0;  ///< frames (or keyframes) that ran the component
 };
 
-/// Components with no sample (e.g. the estimator in edge-only) are left out.
-/// Throws InputError when the file cannot be read.
+/// Every component of frameColumns(), in column order; one with no sample
+/// (e.g. the estimator in edge-only) has count 0. Throws InputError when the
+/// file cannot be read.
 std::vector<ComponentTime> readComponentTimes(const std::string& frames_csv);
 
 }  // namespace edgevio::pipeline

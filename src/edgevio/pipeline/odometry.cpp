@@ -2,226 +2,280 @@
 
 #include <limits>
 
+#include "edgevio/common/time.h"
+#include "edgevio/loop/back_links.h"
+#include "edgevio/loop/local_loop_closure.h"
+
 namespace edgevio::pipeline {
 
 using geometry::SE3;
+using geometry::SO3;
+using tracking::KeyframeReason;
 
 namespace {
 SE3 poseOf(const imu::NavState& x) { return SE3(x.R_w_b, x.p_w); }
 }  // namespace
 
-bool isImuMode(const std::string& mode) { return mode == "edge+imu" || mode == "edge+imu+loop"; }
-bool isLoopMode(const std::string& mode) { return mode == "edge+loop" || mode == "edge+imu+loop"; }
-
-std::string checkMode(const std::string& mode) {
-  if (mode == "edge-only" || mode == "edge+imu" || mode == "edge+loop" || mode == "edge+imu+loop") return {};
-  return "unknown mode '" + mode + "': use edge-only, edge+imu, edge+loop or edge+imu+loop";
+Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tracker, const SE3& T_b_c,
+                   const imu::ImuNoise& noise, const std::vector<imu::ImuSample>& imu, const imu::StaticInit& init,
+                   bool realtime)
+    : mode_(mode), config_(config), tracker_(tracker), imu_(imu), init_(init), T_b_c_(T_b_c), realtime_(realtime) {
+  if (mode.imu || mode.loop) estimator_.emplace(config.estimator, noise, T_b_c, mode.imu, init.gyro_bias);
 }
 
-Odometry::Odometry(const std::string& mode, const Config& config, const camera::StereoRig& rig,
-                   const camera::StereoRectifier& rectifier, const std::vector<io::ImuSample>& imu,
-                   const imu::StaticInit& init, bool realtime)
-    : mode_(mode),
-      inertial_(isImuMode(mode)),
-      loop_(isLoopMode(mode)),
-      config_(config),
-      imu_(imu),
-      init_(init),
-      T_b_c_(rectifier.T_b_rect(0)),
-      tracker_(rectifier, config.vision, config.alignment, config.tracking),
-      estimator_(config.estimator, rig.imu, rectifier.T_b_rect(0), isImuMode(mode)) {
-  if (!realtime) config_.loop.max_ms = std::numeric_limits<double>::infinity();
+FrameRecord Odometry::process(tracking::PreparedFrame frame) {
+  FrameRecord r;
+  r.t_ns = frame.t_ns;
+  r.canny_ms = frame.pyramid.canny_ms;
+  r.dt_ms = frame.pyramid.dt_ms - frame.pyramid.lines_ms;
+  r.lines_ms = frame.pyramid.lines_ms;
+  if (t_first_ < 0) t_first_ = r.t_ns;
+  if (windowed() && estimator_->initialized())
+    processInWindow(std::move(frame), &r);
+  else
+    processWithoutWindow(std::move(frame), &r);
+  // The alignment's T_nr as the body's motion T_bn_br (what ground truth
+  // gives directly: T_w_bn⁻¹·T_w_br), so the front end can be judged alone.
+  r.link_T_bn_br = T_b_c_ * r.alignment.T_nr * T_b_c_.inverse();
+  t_prev_ = r.t_ns;
+  return r;
 }
 
-FrameResult Odometry::process(tracking::PreparedFrame frame) {
+void Odometry::processWithoutWindow(tracking::PreparedFrame frame, FrameRecord* r) {
   const std::int64_t t = frame.t_ns;
-  if (t_first_ < 0) t_first_ = t;
-  FrameResult r = mode_ == "edge-only" ? processEdgeOnly(std::move(frame)) : processWindowed(std::move(frame));
-  t_prev_ = t;
-  return r;
-}
-
-std::optional<geometry::SO3> Odometry::gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const {
-  geometry::SO3 R;
-  if (t0 < 0 || !imu::integrateGyro(imu_, t0, t1, bias, &R)) return std::nullopt;
-  return R;
-}
-
-FrameResult Odometry::processEdgeOnly(tracking::PreparedFrame frame) {
-  FrameResult r;
-  const auto dR = gyroRotation(t_prev_, frame.t_ns, init_.gyro_bias);
-  r.track = tracker_.track(std::move(frame), dR, SE3(init_.R_w_b, Vec3::Zero()));
-  r.T_w_b = r.track.T_w_b;
-  return r;
-}
-
-void Odometry::restart(std::int64_t t_ns, imu::NavState x, bool velocity_known, bool attitude_known) {
-  estimator_.initialize(t_ns, x, velocity_known, attitude_known);
-  keyframes_.clear();
-  // The next frames must link to a state in the new window: this frame
-  // becomes the keyframe (otherwise they would be dead-reckoned from a free velocity).
-  if (const auto kf = tracker_.keyframeTime(); !kf || *kf != t_ns) tracker_.promoteLastFrame();
-  if (const auto kf = tracker_.keyframeData(); kf && kf->t_ns == t_ns) {
-    estimator_.markKeyframe(t_ns);
-    keyframes_[t_ns] = kf;
-  }
-}
-
-FrameResult Odometry::initializeWindow(tracking::PreparedFrame frame) {
-  const std::int64_t t_ns = frame.t_ns;
-  FrameResult r;
-  // Static initialisation (METHOD.md §5): roll, pitch and gyro bias from the
-  // IMU, yaw 0, position 0, velocity 0.
-  imu::NavState x;
-  x.R_w_b = init_.R_w_b;
-  x.b_g = init_.gyro_bias;
-  if (t_prev_ < 0) {
-    r.track = tracker_.track(std::move(frame), poseOf(x), tracking::PredictionReliability::kNone);
+  const bool imu_started = !imu_.empty() && imu_.front().t_ns <= t;
+  if (windowed() && mode_.imu && !imu_started) r->events.push_back("no IMU reading before this frame: tracked without the estimator");
+  if (!keyframes_.current()) {
+    // The first frame: at the static start's attitude (METHOD.md §5), position 0.
+    r->T_w_b = SE3(init_.R_w_b, Vec3::Zero());
+    addKeyframe(std::move(frame), r->T_w_b, KeyframeReason::kFirstFrame, r);
   } else {
-    r = processEdgeOnly(std::move(frame));
-    x.R_w_b = r.track.T_w_b.so3();
-    x.p_w = r.track.T_w_b.translation();
+    const Tracked tracked = track(frame, gyroPrediction(T_w_b_last_, t), r);
+    r->T_w_b = tracked.T_w_b;
+    decideKeyframe(std::move(frame), tracked.T_w_b, tracked.vote, r);
   }
-  // Still inside the static window: the static start holds.
-  const bool still_static = init_.is_static && static_cast<double>(t_ns - t_first_) * 1e-9 < config_.tracking.static_init_window_s;
-  restart(t_ns, x, inertial_ && still_static, inertial_ && still_static);
-  r.T_w_b = r.track.T_w_b;
-  if (inertial_) r.state = estimator_.newest();
-  return r;
+  T_w_b_last_ = r->T_w_b;
+  if (windowed() && (imu_started || !mode_.imu)) startWindow(t, r);
 }
 
-void Odometry::closeLoops(FrameResult* r) {
-  const auto latest_data = tracker_.keyframeData();
-  const auto latest_state = estimator_.stateAt(latest_data->t_ns);
+void Odometry::startWindow(std::int64_t t_ns, FrameRecord* r) {
+  // Static initialisation (METHOD.md §5): roll, pitch and gyro bias from the
+  // IMU, velocity 0; the pose is where tracking put the frame. Still inside
+  // the static window, the static start holds.
+  imu::NavState x;
+  x.R_w_b = r->T_w_b.so3();
+  x.p_w = r->T_w_b.translation();
+  x.b_g = init_.gyro_bias;
+  const bool still_static = init_.is_static && toSeconds(t_ns - t_first_) < config_.tracking.static_init_window_s;
+  estimator_->initialize(t_ns, x, mode_.imu && still_static, mode_.imu && still_static);
+  keyframeForRestart(t_ns, r);
+  if (mode_.imu) r->state = estimator_->newest();
+}
+
+void Odometry::processInWindow(tracking::PreparedFrame frame, FrameRecord* r) {
+  const std::int64_t t = frame.t_ns;
+  const imu::NavState last = estimator_->newest();
+  std::optional<imu::Preintegration> pre;
+  tracking::Prediction p;
+  if (mode_.imu) {
+    pre = estimator_->preintegrateTo(imu_, t);
+    if (!pre) return bridgeImuGap(std::move(frame), r);
+    p.T_w_b = poseOf(imu::predictState(last, *pre));
+    p.reliable = tracking::PredictionReliability::kPose;
+    // The gyroscope alone, with the window's bias, since the keyframe: the
+    // alignment's rotation prior. Not the window's relative estimate, which
+    // the same links pulled: a prior from it would feed their errors back.
+    p.gyro_since = [this, t, b_g = last.b_g](std::int64_t t_ref) { return gyroRotation(t_ref, t, b_g); };
+  } else if (const auto dR = gyroRotation(t_prev_, t, init_.gyro_bias)) {
+    p.T_w_b = SE3(last.R_w_b * *dR, last.p_w);  // the paper's guess: gyro rotation, previous translation
+    p.reliable = tracking::PredictionReliability::kRotation;
+  } else {
+    p.T_w_b = poseOf(last);
+  }
+  const auto keyframe_before = keyframes_.currentTime();
+  const Tracked tracked = track(frame, p, r);
+  if (mode_.imu)
+    estimator_->addState(t, std::move(*pre));
+  else
+    estimator_->addStateWithoutImu(t, tracked.T_w_b);
+  const bool link_good = offerLink(r);
+  // A rejected link is dropped and the frame becomes a keyframe (METHOD.md
+  // §5); so does a frame whose keyframe is no longer in the window.
+  const KeyframeReason why = tracked.vote == KeyframeReason::kNone && r->selfCheckPassed() && !link_good
+                                 ? KeyframeReason::kLinkRejected
+                                 : tracked.vote;
+  decideKeyframe(std::move(frame), tracked.T_w_b, why, r);
+  if (keyframes_.currentTime() != keyframe_before) closeLoops(r);
+  if (tracked.vote != KeyframeReason::kNone && link_good) linkBack(tracked.T_w_b, r);
+  optimize(link_good, tracked.T_w_b, r);
+  r->T_w_b = poseOf(estimator_->newest());
+  if (mode_.imu) r->state = estimator_->newest();
+}
+
+void Odometry::bridgeImuGap(tracking::PreparedFrame frame, FrameRecord* r) {
+  // No IMU coverage between the frames: track from the last pose, and start
+  // a new window here (the inertial chain is broken); attitude and biases
+  // carry over, the velocity is estimated anew.
+  tracking::Prediction p;
+  p.T_w_b = poseOf(estimator_->newest());
+  const Tracked tracked = track(frame, p, r);
+  r->T_w_b = tracked.T_w_b;
+  decideKeyframe(std::move(frame), tracked.T_w_b, tracked.vote, r);
+  estimator_->restartAfterGap(r->t_ns, tracked.T_w_b);
+  r->restart = WindowRestart::kImuGap;
+  r->events.push_back("no IMU coverage (or an IMU gap) since the previous frame: estimator restarted");
+  keyframeForRestart(r->t_ns, r);
+  r->state = estimator_->newest();
+}
+
+tracking::Prediction Odometry::gyroPrediction(const SE3& T_w_b_last, std::int64_t t_ns) const {
+  // Rotation from the gyroscope, translation from the previous estimate (METHOD.md §3).
+  const auto dR = gyroRotation(t_prev_, t_ns, init_.gyro_bias);
+  tracking::Prediction p;
+  p.T_w_b = SE3(T_w_b_last.so3() * (dR ? *dR : SO3()), T_w_b_last.translation());
+  p.reliable = dR ? tracking::PredictionReliability::kRotation : tracking::PredictionReliability::kNone;
+  return p;
+}
+
+Odometry::Tracked Odometry::track(const tracking::PreparedFrame& frame, const tracking::Prediction& p, FrameRecord* r) {
+  r->aligned = true;
+  const auto alignToCurrent = [&] {
+    const Keyframe& k = *keyframes_.current();
+    r->reference_t_ns = k.data->t_ns;
+    r->reference_points = k.data->referencePoints();
+    tracking::Track t = tracker_.track(frame, *k.data, keyframePose(k), p);
+    r->gyro_check_failed |= t.check == tracking::PredictionCheck::kGyro;
+    r->translation_check_failed |= t.check == tracking::PredictionCheck::kTranslation;
+    return t;
+  };
+  tracking::Track t = alignToCurrent();
+  if (!t.passed() && previous_) {
+    // Motion since the keyframe was too large: the previous frame, tracked
+    // and closer to this one, becomes the keyframe, and alignment is retried.
+    const double first_ms = t.alignment.ms;
+    promotePrevious(KeyframeReason::kNone, r);
+    t = alignToCurrent();
+    t.alignment.ms += first_ms;
+  }
+  r->alignment = t.alignment;
+  // The link is not used when the alignment failed: the frame keeps its prediction.
+  return t.passed() ? Tracked{t.T_w_b, t.keyframe_vote} : Tracked{p.T_w_b, KeyframeReason::kSelfCheckFailed};
+}
+
+bool Odometry::offerLink(FrameRecord* r) {
+  if (!r->selfCheckPassed()) return false;
+  const auto check = estimator_->offerTrackingLink(r->reference_t_ns, r->alignment.T_nr, r->alignment.covariance);
+  if (check) r->external = *check;
+  if (mode_.imu) r->external_check = !check ? ExternalCheck::kNoReference : check->accepted ? ExternalCheck::kAccepted : ExternalCheck::kRejected;
+  return check && check->accepted;
+}
+
+void Odometry::decideKeyframe(tracking::PreparedFrame frame, const SE3& T_w_b, KeyframeReason why, FrameRecord* r) {
+  if (why == KeyframeReason::kNone)
+    previous_ = Previous{std::move(frame), T_w_b};
+  else
+    addKeyframe(std::move(frame), T_w_b, why, r);
+}
+
+void Odometry::addKeyframe(tracking::PreparedFrame frame, const SE3& T_w_b, KeyframeReason why, FrameRecord* r) {
+  std::shared_ptr<const tracking::KeyframeData> data = tracker_.makeKeyframe(std::move(frame));
+  r->bm_ms += data->depth.bm_ms;
+  ++r->keyframes_made;
+  if (data->t_ns == r->t_ns)
+    r->keyframe = why;
+  else
+    r->previous_promoted = true;
+  if (data->right_image_unreadable) r->events.push_back("right image unreadable: keyframe without depth");
+  const bool in_window = windowed() && estimator_->stateAt(data->t_ns).has_value();
+  keyframes_.add(std::move(data), T_w_b, in_window);
+  previous_.reset();  // the keyframe is the previous frame now
+}
+
+bool Odometry::promotePrevious(KeyframeReason why, FrameRecord* r) {
+  if (!previous_) return false;
+  Previous p = std::move(*previous_);
+  previous_.reset();
+  addKeyframe(std::move(p.frame), p.T_w_b, why, r);
+  return true;
+}
+
+void Odometry::optimize(bool link_good, const SE3& restart_pose, FrameRecord* r) {
+  estimator::KeyframeQuery keyframes;
+  keyframes.current = keyframes_.currentTime();
+  keyframes.is_keyframe = [this](std::int64_t t) { return keyframes_.isKeyframe(t); };
+  r->estimator = estimator_->optimize(link_good, keyframes, restart_pose);
+  if (!r->estimator.reset_reason.empty()) {
+    // The estimate blew up and the estimator restarted its window at this frame.
+    r->restart = WindowRestart::kBlowUp;
+    r->events.push_back("estimator reset: " + r->estimator.reset_reason);
+    keyframeForRestart(r->t_ns, r);
+    return;
+  }
+  const std::int64_t gone = r->estimator.marginalized_t_ns;
+  if (gone < 0) return;
+  const bool was_current = keyframes_.currentTime() == gone;
+  keyframes_.leftWindow(gone);
+  // Later links need a reference in the window.
+  if (was_current && promotePrevious(KeyframeReason::kKeyframeLeftWindow, r)) closeLoops(r);
+}
+
+void Odometry::keyframeForRestart(std::int64_t t_ns, FrameRecord* r) {
+  keyframes_.windowRestarted();
+  // The next frames must link to a state in the new window (otherwise they
+  // would be dead-reckoned from a free velocity): this frame is the keyframe.
+  if (keyframes_.currentTime() != t_ns) promotePrevious(KeyframeReason::kWindowRestart, r);
+  if (keyframes_.currentTime() == t_ns) keyframes_.enterWindow(t_ns);
+}
+
+void Odometry::closeLoops(FrameRecord* r) {
+  const Keyframe& latest = *keyframes_.current();
+  const auto latest_state = estimator_->stateAt(latest.data->t_ns);
   if (!latest_state) return;
-  keyframes_[latest_data->t_ns] = latest_data;
+  keyframes_.makeLoopReady(latest.data->t_ns);
+  if (!mode_.loop) return;
   std::vector<loop::LoopKeyframe> older;
-  for (auto it = keyframes_.begin(); it != keyframes_.end();) {
-    const auto x = estimator_.stateAt(it->first);
-    if (!x) {
-      it = keyframes_.erase(it);  // left the window
-      continue;
-    }
-    if (it->first != latest_data->t_ns) older.push_back({it->second, poseOf(*x) * T_b_c_});
-    ++it;
+  keyframes_.forEachLoopReady([&](const Keyframe& k) {
+    if (k.data->t_ns != latest.data->t_ns) older.push_back({k.data, keyframePose(k) * T_b_c_});
+  });
+  r->loop_closure_ran = true;
+  loop::LoopStats stats;
+  const double budget_ms = realtime_ ? config_.loop.realtime_max_ms : std::numeric_limits<double>::infinity();
+  for (const loop::LoopLink& l : loop::closeLoops({latest.data, poseOf(*latest_state) * T_b_c_}, older, config_.loop,
+                                                  config_.alignment, budget_ms, &stats)) {
+    const bool added = estimator_->addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
+    r->loop_links += added;
+    r->loop_window_rejections += !added;
   }
-  if (!loop_) return;
-  r->loop_ran = true;
-  const loop::LoopKeyframe latest{latest_data, poseOf(*latest_state) * T_b_c_};
-  for (const loop::LoopLink& l : loop::closeLoops(latest, older, config_.loop, config_.alignment, &r->loop)) {
-    const bool added = estimator_.addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
-    loop_closures_ += added;
-    r->loop.window_rejections += !added;
-  }
+  r->loop_candidates += stats.candidates;
+  r->loop_ms += stats.ms;
 }
 
-void Odometry::linkBack(const tracking::FrameTrack& t, FrameResult* r) {
-  const auto latest = tracker_.keyframeData();
-  if (config_.back_links.keyframes == 0 || !latest || latest->t_ns != t.t_ns) return;
+void Odometry::linkBack(const SE3& T_w_b, FrameRecord* r) {
+  if (config_.back_links.keyframes == 0) return;
+  const Keyframe& latest = *keyframes_.current();
   std::vector<loop::LoopKeyframe> previous;  // newest first, at the window's estimates
-  for (auto it = keyframes_.rbegin(); it != keyframes_.rend(); ++it)
-    if (it->first < t.t_ns)
-      if (const auto x = estimator_.stateAt(it->first)) previous.push_back({it->second, poseOf(*x) * T_b_c_});
+  keyframes_.forEachLoopReady([&](const Keyframe& k) {
+    if (k.data->t_ns < latest.data->t_ns) previous.insert(previous.begin(), {k.data, keyframePose(k) * T_b_c_});
+  });
   // The tracker's pose of the new keyframe carries its tracking link, so the
   // first back link is checked against that link.
-  const loop::LoopKeyframe newest{latest, t.T_w_b * T_b_c_};
-  for (const loop::LoopLink& l : loop::backLinks(newest, previous, config_.back_links, config_.alignment, &r->back))
-    r->back_links_added += estimator_.addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
-  back_links_ += static_cast<std::size_t>(r->back_links_added);
+  loop::BackLinkStats stats;
+  for (const loop::LoopLink& l :
+       loop::backLinks({latest.data, T_w_b * T_b_c_}, previous, config_.back_links, config_.alignment, &stats))
+    r->back_links += estimator_->addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
+  r->back_link_ms = stats.ms;
 }
 
-FrameResult Odometry::processWindowed(tracking::PreparedFrame frame) {
-  const std::int64_t t_ns = frame.t_ns;
-  if (inertial_ && !estimator_.initialized() && (imu_.empty() || imu_.front().t_ns > t_ns)) {
-    // The IMU has not started yet: track visually until it has.
-    FrameResult r = processEdgeOnly(std::move(frame));
-    r.event = "no IMU reading before this frame: tracked without the estimator";
-    return r;
-  }
-  if (!estimator_.initialized()) return initializeWindow(std::move(frame));
+SE3 Odometry::keyframePose(const Keyframe& k) const {
+  if (windowed())
+    if (const auto x = estimator_->stateAt(k.data->t_ns)) return poseOf(*x);
+  return k.T_w_b;
+}
 
-  FrameResult r;
-  const imu::NavState last = estimator_.newest();
-  std::optional<imu::Preintegration> pre;
-  SE3 T_w_b_pred = poseOf(last);
-  auto reliable = tracking::PredictionReliability::kNone;
-  if (inertial_) {
-    pre = estimator_.preintegrateTo(imu_, t_ns);
-    if (!pre) {
-      // No IMU coverage between the frames: track from the last pose, and
-      // start a new window here (the inertial chain is broken).
-      r.track = tracker_.track(std::move(frame), poseOf(last), tracking::PredictionReliability::kNone);
-      imu::NavState x = last;
-      x.R_w_b = r.track.T_w_b.so3();
-      x.p_w = r.track.T_w_b.translation();
-      restart(t_ns, x, false, true);  // the attitude and biases carry over; the velocity is re-estimated
-      ++resets_;
-      r.event = "no IMU coverage (or an IMU gap) since the previous frame: estimator restarted";
-      r.T_w_b = r.track.T_w_b;
-      r.state = estimator_.newest();
-      return r;
-    }
-    T_w_b_pred = poseOf(estimator::predictState(last, *pre));
-    reliable = tracking::PredictionReliability::kPose;
-  } else if (const auto dR = gyroRotation(t_prev_, t_ns, init_.gyro_bias)) {
-    T_w_b_pred = SE3(last.R_w_b * *dR, last.p_w);  // the paper's guess: gyro rotation, previous translation
-    reliable = tracking::PredictionReliability::kRotation;
-  }
-
-  tracker_.correctPoses([&](std::int64_t t) -> std::optional<SE3> {
-    if (const auto x = estimator_.stateAt(t)) return poseOf(*x);
-    return std::nullopt;
-  });
-  const auto keyframe_before = tracker_.keyframeTime();
-  // The gyroscope alone, with the window's bias, since the keyframe: the
-  // alignment's rotation prior. Not the window's relative estimate, which
-  // the same links pulled: a prior from it would feed their errors back.
-  tracking::EdgeTracker::GyroSince gyro_since;
-  if (inertial_) gyro_since = [&](std::int64_t t_ref) { return gyroRotation(t_ref, t_ns, last.b_g); };
-  r.track = tracker_.track(std::move(frame), T_w_b_pred, reliable, gyro_since);
-  const tracking::FrameTrack& t = r.track;
-  const bool aligned = t.aligned && t.self_check_passed;
-  if (inertial_)
-    estimator_.addState(t_ns, std::move(*pre));
-  else
-    estimator_.addStateWithoutImu(t_ns, aligned ? t.T_w_b : T_w_b_pred);
-  if (t.promoted_previous) estimator_.markKeyframe(t.reference_t_ns);
-  bool link_good = false;
-  if (aligned) {
-    const auto check = estimator_.offerTrackingLink(t.reference_t_ns, t.alignment.T_nr, t.alignment.covariance);
-    if (check) r.external = *check;
-    if (inertial_) r.external_check = !check ? "no reference" : check->accepted ? "accepted" : "rejected";
-    link_good = check && check->accepted;
-    // A rejected link is dropped and the frame becomes a keyframe (METHOD.md §5);
-    // so does a frame whose keyframe is no longer in the window (after a restart).
-    if (!link_good && !t.keyframe) r.forced_keyframe = tracker_.promoteLastFrame();
-  }
-  if (t.keyframe || r.forced_keyframe) estimator_.markKeyframe(t_ns);
-  if (tracker_.keyframeTime() != keyframe_before) closeLoops(&r);
-  if (t.keyframe && link_good) linkBack(t, &r);
-
-  r.estimator = estimator_.optimize(link_good, tracker_.keyframeTime());
-  if (!r.estimator.reset_reason.empty()) {
-    // The estimate blew up: restart the window at this frame from the
-    // tracker's pose (or the prediction), keeping what is still plausible.
-    imu::NavState x = estimator_.newest();
-    x.R_w_b = (aligned ? t.T_w_b : T_w_b_pred).so3();
-    x.p_w = (aligned ? t.T_w_b : T_w_b_pred).translation();
-    if (!x.v_w.allFinite() || x.v_w.norm() > config_.estimator.reset_velocity) x.v_w.setZero();
-    if (!x.b_a.allFinite() || x.b_a.norm() > config_.estimator.reset_accel_bias) x.b_a.setZero();
-    if (!x.b_g.allFinite() || x.b_g.norm() > config_.estimator.reset_gyro_bias) x.b_g = init_.gyro_bias;
-    restart(t_ns, x, false, false);
-    ++resets_;
-    r.event = "estimator reset: " + r.estimator.reset_reason;
-  } else if (r.estimator.keyframe_left_window && tracker_.promoteLastFrame()) {
-    // The keyframe was marginalised: later links need a reference in the window.
-    r.forced_keyframe = true;
-    estimator_.markKeyframe(t_ns);
-    closeLoops(&r);
-  }
-  r.T_w_b = poseOf(estimator_.newest());
-  if (inertial_) r.state = estimator_.newest();
-  return r;
+std::optional<SO3> Odometry::gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const {
+  SO3 R;
+  if (t0 < 0 || !imu::integrateGyro(imu_, t0, t1, bias, &R)) return std::nullopt;
+  return R;
 }
 
 }  // namespace edgevio::pipeline

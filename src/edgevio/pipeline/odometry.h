@@ -1,94 +1,110 @@
 #pragma once
-// One frame at a time through the system (METHOD.md §1): tracking, then the
-// estimator, then local loop closure on new keyframes. The stage code both
-// the offline and the real-time drivers call; it owns the tracker, the
-// estimator and the keyframes in the window, and talks to them through their
-// plain results (FrameTrack, EstimatorUpdate, LoopLink).
-//   edge-only:     the tracker's causal pose; the gyroscope guesses the rotation.
+// One frame at a time through the system (METHOD.md §1): tracking, the
+// keyframe policy, the estimator, then loop closure on new keyframes. The
+// stage code both the offline and the real-time drivers call. It owns the
+// keyframes (one KeyframeStore), asks the tracker for tracks and the
+// estimator for states, and returns one FrameRecord per frame.
+//   edge-only:     the tracker's pose; the gyroscope guesses the rotation.
 //   edge+loop:     the window as a pose graph of tracking and loop links
 //                  (no IMU links); the gyroscope guesses the rotation.
 //   edge+imu:      the IMU predicts every frame (the alignment's initial
 //                  guess), tracking links pass the external check into the
 //                  window, which is solved and marginalised; the newest state
-//                  is the frame's pose. A rejected link makes the frame a keyframe.
+//                  is the frame's pose.
 //   edge+imu+loop: the full system.
 // In the window's modes every new keyframe is also linked back into the
 // keyframes before it (loop/back_links.h).
-#include <map>
+//
+// The keyframe policy (METHOD.md §3, §5): a frame becomes a keyframe when
+// tracking votes for it (its alignment failed, or edge counts, reference
+// points or visibility say so), when the estimator refuses its link, when
+// the keyframe it was tracked against leaves the window, or when the window
+// restarts at it. When its alignment to the keyframe fails, the previous
+// frame (already tracked, closer to it) becomes the keyframe first and the
+// frame is aligned again.
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "edgevio/camera/stereo_rectifier.h"
 #include "edgevio/config/config.h"
 #include "edgevio/estimator/vio_estimator.h"
 #include "edgevio/imu/gyro_integration.h"
-#include "edgevio/loop/back_links.h"
-#include "edgevio/loop/local_loop_closure.h"
+#include "edgevio/pipeline/frame_record.h"
+#include "edgevio/pipeline/keyframe_store.h"
+#include "edgevio/pipeline/mode.h"
 #include "edgevio/tracking/edge_tracker.h"
 
 namespace edgevio::pipeline {
 
-/// Everything that happened to one frame (a row of frames.csv).
-struct FrameResult {
-  tracking::FrameTrack track;
-  geometry::SE3 T_w_b;                   ///< the causal pose estimate of the frame
-  std::optional<imu::NavState> state;    ///< the newest window state (velocity, biases) when the estimator ran
-  estimator::EstimatorUpdate estimator;
-  std::string external_check = "-";      ///< accepted | rejected | no reference | - (no link offered, or no IMU)
-  estimator::ExternalCheckResult external;
-  bool forced_keyframe = false;          ///< became a keyframe because its link was rejected or the keyframe left the window
-  loop::BackLinkStats back;              ///< a new keyframe's links back into the keyframes before it
-  int back_links_added = 0;              ///< ... of which entered the window (the estimator's loop check)
-  bool loop_ran = false;                 ///< a new keyframe looked for loop closures
-  loop::LoopStats loop;
-  std::string event;                     ///< a reset or an IMU gap, for the log
-};
-
-bool isImuMode(const std::string& mode);
-bool isLoopMode(const std::string& mode);
-/// Empty when `mode` is one `edgevio run` accepts, else the message naming the choices.
-std::string checkMode(const std::string& mode);
-
 class Odometry {
  public:
-  /// `imu` must outlive the object. `realtime`: time budgets (loop.max_ms)
-  /// apply; offline only the attempt counts bound work, so that the result
-  /// does not depend on the machine's speed.
-  Odometry(const std::string& mode, const Config& config, const camera::StereoRig& rig,
-           const camera::StereoRectifier& rectifier, const std::vector<io::ImuSample>& imu,
-           const imu::StaticInit& init, bool realtime = false);
+  /// `tracker` and `imu` must outlive the object. T_b_c: body → the camera
+  /// the tracker's links are measured in. `realtime`: loop closure's time
+  /// budget (loop.realtime_max_ms) applies; offline only its attempt counts
+  /// bound the work, so that the result does not depend on the machine.
+  Odometry(Mode mode, const Config& config, const tracking::Tracker& tracker, const geometry::SE3& T_b_c,
+           const imu::ImuNoise& noise, const std::vector<imu::ImuSample>& imu, const imu::StaticInit& init,
+           bool realtime = false);
 
   /// The frame's pyramid must be built with the config's vision options
   /// (tracking::prepareFrame); a driver may do that on another thread.
-  FrameResult process(tracking::PreparedFrame frame);
-
-  bool lost() const { return tracker_.lost(); }
-  std::size_t resets() const { return resets_; }
-  std::size_t loopClosures() const { return loop_closures_; }
-  std::size_t backLinks() const { return back_links_; }
+  FrameRecord process(tracking::PreparedFrame frame);
 
  private:
-  FrameResult processEdgeOnly(tracking::PreparedFrame frame);
-  FrameResult processWindowed(tracking::PreparedFrame frame);
-  FrameResult initializeWindow(tracking::PreparedFrame frame);
-  void restart(std::int64_t t_ns, imu::NavState x, bool velocity_known, bool attitude_known);
-  void closeLoops(FrameResult* r);
-  void linkBack(const tracking::FrameTrack& t, FrameResult* r);
-  std::optional<geometry::SO3> gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const;
+  /// A frame tracked but not made a keyframe: it becomes the keyframe when
+  /// the next frame fails to align to the old one, or when the window needs one.
+  struct Previous {
+    tracking::PreparedFrame frame;
+    geometry::SE3 T_w_b;  ///< the pose tracking gave it
+  };
 
-  std::string mode_;
-  bool inertial_, loop_;
+  /// A frame's pose from tracking (the prediction's when its alignment
+  /// failed), and tracking's vote for making it a keyframe.
+  struct Tracked {
+    geometry::SE3 T_w_b;
+    tracking::KeyframeReason vote = tracking::KeyframeReason::kNone;
+  };
+
+  void processWithoutWindow(tracking::PreparedFrame frame, FrameRecord* r);
+  void startWindow(std::int64_t t_ns, FrameRecord* r);
+  void processInWindow(tracking::PreparedFrame frame, FrameRecord* r);
+  void bridgeImuGap(tracking::PreparedFrame frame, FrameRecord* r);
+
+  tracking::Prediction gyroPrediction(const geometry::SE3& T_w_b_last, std::int64_t t_ns) const;
+  /// Aligns the frame to the current keyframe, promoting the previous frame when that fails.
+  Tracked track(const tracking::PreparedFrame& frame, const tracking::Prediction& p, FrameRecord* r);
+  /// Offers the frame's tracking link to the window; true when it entered.
+  bool offerLink(FrameRecord* r);
+  /// Makes the frame a keyframe (or keeps it as the previous frame when `why` is kNone).
+  void decideKeyframe(tracking::PreparedFrame frame, const geometry::SE3& T_w_b, tracking::KeyframeReason why, FrameRecord* r);
+  void addKeyframe(tracking::PreparedFrame frame, const geometry::SE3& T_w_b, tracking::KeyframeReason why, FrameRecord* r);
+  /// Makes the previous frame the keyframe; false when there is none.
+  bool promotePrevious(tracking::KeyframeReason why, FrameRecord* r);
+  /// Solves and marginalises; handles the window's events (a restart, the keyframe leaving).
+  void optimize(bool link_good, const geometry::SE3& restart_pose, FrameRecord* r);
+  /// After the window (re)started at t_ns: that frame is its only keyframe.
+  void keyframeForRestart(std::int64_t t_ns, FrameRecord* r);
+
+  void closeLoops(FrameRecord* r);
+  void linkBack(const geometry::SE3& T_w_b, FrameRecord* r);
+
+  geometry::SE3 keyframePose(const Keyframe& k) const;
+  std::optional<geometry::SO3> gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const;
+  bool windowed() const { return estimator_.has_value(); }
+
+  Mode mode_;
   Config config_;
-  const std::vector<io::ImuSample>& imu_;
+  const tracking::Tracker& tracker_;
+  const std::vector<imu::ImuSample>& imu_;
   imu::StaticInit init_;
   geometry::SE3 T_b_c_;
-  tracking::EdgeTracker tracker_;
-  estimator::VioEstimator estimator_;
-  std::map<std::int64_t, std::shared_ptr<const tracking::KeyframeData>> keyframes_;  ///< in the window, for loop closure
+  bool realtime_;
+  std::optional<estimator::VioEstimator> estimator_;  ///< the window's modes
+  KeyframeStore keyframes_;
+  std::optional<Previous> previous_;
+  geometry::SE3 T_w_b_last_;  ///< the last frame's pose
   std::int64_t t_first_ = -1, t_prev_ = -1;
-  std::size_t resets_ = 0, loop_closures_ = 0, back_links_ = 0;
 };
 
 }  // namespace edgevio::pipeline

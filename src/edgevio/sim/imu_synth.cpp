@@ -22,7 +22,7 @@ SynthesizedImu synthesizeImu(const SplineTrajectory& trajectory, std::int64_t be
   const double wg = o.densities.gyro_random_walk * std::sqrt(dt), wa = o.densities.accel_random_walk * std::sqrt(dt);
   for (std::int64_t t = begin_ns; t <= end_ns; t += step) {
     const KinematicState s = trajectory.evaluate(t);
-    io::ImuSample m;
+    imu::ImuSample m;
     m.t_ns = t;
     m.gyro = s.omega_b + bg;
     m.accel = s.T_w_b.so3().inverse() * (s.a_w + Vec3(0.0, 0.0, kGravity)) + ba;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "edgevio/camera/calibration.h"
-#include "edgevio/io/imu_sample.h"
+#include "edgevio/imu/imu_types.h"
 #include "edgevio/sim/spline_trajectory.h"
 
 namespace edgevio::sim {
@@ -17,13 +17,13 @@ constexpr double kGravity = 9.81;
 
 struct ImuSynthOptions {
   bool noise = true;                     ///< white noise, random walk and initial biases; false: exact readings
-  camera::ImuNoise densities;            ///< continuous-time densities
+  imu::ImuNoise densities;            ///< continuous-time densities
   double initial_gyro_bias_sigma = 0.003;   ///< [rad/s]
   double initial_accel_bias_sigma = 0.05;   ///< [m/s²]
 };
 
 struct SynthesizedImu {
-  std::vector<io::ImuSample> samples;
+  std::vector<imu::ImuSample> samples;
   std::vector<Vec3> b_g, b_a;  ///< true biases at each sample
 };
 

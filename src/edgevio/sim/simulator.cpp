@@ -25,30 +25,6 @@ namespace edgevio::sim {
 namespace fs = std::filesystem;
 using geometry::SE3;
 
-std::string SimOptions::validate() const {
-  if (!(knot_dt_s >= 0.005 && knot_dt_s <= 0.5)) return "knot_dt_s: must be in [0.005, 0.5]";
-  if (!(max_trajectory_gap_s > 0)) return "max_trajectory_gap_s: must be > 0";
-  if (!(trajectory_max_accel_mps2 >= 0)) return "trajectory_max_accel_mps2: must be >= 0 (0: off)";
-  if (!(trajectory_step_spread_s > 0)) return "trajectory_step_spread_s: must be > 0";
-  if (!(static_start_s >= 0)) return "static_start_s: must be >= 0";
-  if (!(scenario_duration_s > 0)) return "scenario_duration_s: must be > 0";
-  if (!(scene.room_margin_m > 0 && scene.floor_below_path_m > 0 && scene.ceiling_above_path_m > 0))
-    return "room_margin_m, floor_below_path_m, ceiling_above_path_m: must be > 0";
-  if (scene.obstacle_count < 0 || scene.obstacle_count > 200) return "obstacle_count: must be in [0, 200]";
-  if (scene.texture_log2_size < 6 || scene.texture_log2_size > 12) return "texture_log2_size: must be in [6, 12]";
-  if (!(scene.texture_tile_m > 0)) return "texture_tile_m: must be > 0";
-  if (!(exposure_gain > 0)) return "exposure_gain: must be > 0";
-  if (!(image_noise_sigma >= 0)) return "image_noise_sigma: must be >= 0";
-  if (!(vignetting >= 0 && vignetting < 1)) return "vignetting: must be in [0, 1)";
-  if (!(exposure_drift_amplitude >= 0 && exposure_drift_amplitude < 1)) return "exposure_drift_amplitude: must be in [0, 1)";
-  if (!(lighting_change_magnitude >= 0 && lighting_change_magnitude < 1)) return "lighting_change_magnitude: must be in [0, 1)";
-  if (!(exposure_drift_period_s > 0 && lighting_change_interval_s > 0)) return "exposure_drift_period_s, lighting_change_interval_s: must be > 0";
-  if (!(blur_substep_ms > 0)) return "blur_substep_ms: must be > 0";
-  if (png_compression < 0 || png_compression > 9) return "png_compression: must be in [0, 9]";
-  if (threads < 1 || threads > 64) return "threads: must be in [1, 64]";
-  return {};
-}
-
 namespace {
 
 std::string seconds(std::int64_t t_ns) {
@@ -81,18 +57,7 @@ class LightingChanges {
   std::vector<std::pair<std::int64_t, float>> changes_;
 };
 
-struct YamlOut {
-  std::ostream& out;
-  template <class T>
-  void operator()(const char* key, const T& value, const char*, const char*) {
-    out << "  " << key << ": " << value << "\n";
-  }
-  void operator()(const char* key, const std::string& value, const char*, const char*) {
-    out << "  " << key << ": \"" << value << "\"\n";
-  }
-};
-
-void writeSimulationYaml(const std::string& path, const SimRequest& r, SimOptions o) {
+void writeSimulationYaml(const std::string& path, const SimRequest& r, const SimOptions& o) {
   std::ofstream f(path);
   f.precision(17);
   f << "# How this folder was made (edgevio simulate). Same request + seed = same bytes.\n"
@@ -101,8 +66,7 @@ void writeSimulationYaml(const std::string& path, const SimRequest& r, SimOption
     << (r.noise ? "true" : "false") << "\nblur_ms: " << r.blur_ms << "\nexposure_changes: "
     << (r.exposure_changes ? "true" : "false") << "\ndrop_rate: " << r.drop_rate << "\nskip: " << r.skip
     << "\ncalib: \"" << r.calib << "\"\nsim:\n";
-  YamlOut w{f};
-  o.visit(w);
+  for (const options::Field<SimOptions>& field : SimOptions::table().fields) f << "  " << field.key << ": " << field.format(o) << "\n";
 }
 
 /// sim.knot_dt_s, or the samples' median spacing where that is wider: denser
@@ -123,7 +87,7 @@ double knotSpacing(const io::Trajectory& samples, double knot_dt_s) {
 
 SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimProgress& progress) {
   const auto wall_start = std::chrono::steady_clock::now();
-  const std::string invalid = options.validate();
+  const std::string invalid = options::validate(options);
   if (!invalid.empty()) throw InputError("invalid sim option: " + invalid);
   if (req.out_dir.empty()) throw InputError("simulate needs --out DIR");
   if (req.trajectory_file.empty() == req.scenario.empty())
@@ -182,7 +146,7 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
     io_opts.initial_accel_bias_sigma = options.initial_accel_bias_sigma;
     imu = synthesizeImu(spline, begin_ns, end_ns, io_opts, req.seed);
   } else {
-    const std::vector<io::ImuSample> all = io::readImuCsv(req.imu, 1e9, nullptr);
+    const std::vector<imu::ImuSample> all = io::readImuCsv(req.imu, 1e9, nullptr);
     for (const auto& s : all)
       if (s.t_ns >= begin_ns && s.t_ns <= end_ns) imu.samples.push_back(s);
     if (all.front().t_ns > begin_ns + 10000000 || all.back().t_ns < end_ns - 10000000)

@@ -1,42 +1,70 @@
 #pragma once
-#include <string>
+#include "edgevio/common/options.h"
 
 namespace edgevio::tracking {
 
-/// Options of edge alignment and the self check (config section `alignment`; METHOD.md §3).
-struct AlignmentOptions {
-  std::string residual = "point_to_line";     ///< point_to_line: signed distance to the nearest sub-pixel edge line | distance: V (paper)
-  int max_iterations_per_level = 20;          ///< Gauss-Newton iterations per pyramid level [-]
-  double min_step = 1e-5;                     ///< stop a level when |ξ| falls below this [m, rad]
-  int max_stalled_iterations = 3;             ///< stop a level after this many iterations without a better mean distance [-]
-  std::string weight = "cauchy";              ///< cauchy: w = 1/(1 + υ²/c²) | laplacian: w = exp(−υ) (paper)
-  double cauchy_c2 = 1.5;                     ///< c² of the Cauchy weight [px²]
-  int border_px = 2;                          ///< points must land in [b, W−1−b]x[b, H−1−b] [px]
-  int min_points = 30;                        ///< fewer visible points at a level: the level is skipped [-]
-  int max_points = 3000;                      ///< at most this many reference points per level, evenly strided; 0 = all [-]
-  double max_normal_angle_deg = 45.0;         ///< finest level: a point whose nearest edge's normal is farther than this from its own (mapped into the current image) gets weight 0; 0: off [deg]
-  double self_check_max_mean_distance_px = 5.0;  ///< self check: mean υ at level 0 at most this [px]
-  double self_check_min_visible_ratio = 0.5;     ///< self check: at least this fraction of points in the image [-]
-  double self_check_max_translation_sigma_m = 0.2;  ///< self check: σ of the translation along its weakest direction at most this (1 level-0 px of edge noise) [m]
+/// What a reference point's residual measures on the finest level (coarser
+/// levels always use the distance transform, whose wide basin they are for).
+enum class Residual { kPointToLine, kDistance };
+inline constexpr options::Choice<Residual> kResidualChoices[] = {
+    {Residual::kPointToLine, "point_to_line", "signed distance to the nearest sub-pixel edge line"},
+    {Residual::kDistance, "distance", "the distance transform's value, the paper's eq 5"}};
 
-  template <class Visitor>
-  void visit(Visitor& v) {
-    v("residual", residual, "-", "point_to_line: signed distance to the nearest sub-pixel edge line | distance: DT value (paper)");
-    v("max_iterations_per_level", max_iterations_per_level, "-", "Gauss-Newton iterations per pyramid level");
-    v("min_step", min_step, "m|rad", "a level stops when the step norm falls below this");
-    v("max_stalled_iterations", max_stalled_iterations, "-", "a level stops after this many iterations without improvement");
-    v("weight", weight, "-", "cauchy: w = 1/(1 + d^2/c^2) | laplacian: w = exp(-d) (paper); d = distance to the nearest edge");
-    v("cauchy_c2", cauchy_c2, "px^2", "c^2 of the Cauchy weight");
-    v("border_px", border_px, "px", "points must project at least this far inside the image");
-    v("min_points", min_points, "-", "a level with fewer visible points is skipped");
-    v("max_points", max_points, "-", "at most this many reference points per level (even stride); 0 = all");
-    v("max_normal_angle_deg", max_normal_angle_deg, "deg", "finest level: weight 0 for a point whose nearest edge's signed normal is farther than this from its own edge's (0: off)");
-    v("self_check_max_mean_distance_px", self_check_max_mean_distance_px, "px", "self check: mean distance at level 0");
-    v("self_check_min_visible_ratio", self_check_min_visible_ratio, "-", "self check: fraction of points in the image");
-    v("self_check_max_translation_sigma_m", self_check_max_translation_sigma_m, "m",
-      "self check: std. dev. of the translation along its weakest direction, for 1 px of edge noise (a collapsed fit: all points on one spot)");
-  }
-  std::string validate() const;
+/// The robust weight of a residual, from the point's distance d to the nearest edge.
+enum class RobustWeight { kCauchy, kLaplacian };
+inline constexpr options::Choice<RobustWeight> kRobustWeightChoices[] = {
+    {RobustWeight::kCauchy, "cauchy", "w = 1/(1 + d^2/c^2)"},
+    {RobustWeight::kLaplacian, "laplacian", "w = exp(-d), the paper's"}};
+
+/// Edge alignment and its self check (config section `alignment`; METHOD.md §3).
+struct AlignmentOptions {
+  Residual residual;
+  int max_iterations_per_level;
+  double min_step;
+  int max_stalled_iterations;
+  RobustWeight weight;
+  double cauchy_c2;
+  int border_px;
+  int min_points;
+  int max_points;
+  double max_normal_angle_deg;
+  double self_check_max_mean_distance_px;
+  double self_check_min_visible_ratio;
+  double self_check_max_translation_sigma_m;
+
+  AlignmentOptions() { options::setDefaults(*this); }
+  static const options::Table<AlignmentOptions>& table();
 };
+
+inline const options::Table<AlignmentOptions>& AlignmentOptions::table() {
+  using S = AlignmentOptions;
+  using namespace options;
+  static const Table<S> t{
+      {choice("residual", &S::residual, Residual::kPointToLine, kResidualChoices, "residual of a reference point on the finest level"),
+       number("max_iterations_per_level", &S::max_iterations_per_level, 20, "-", "Gauss-Newton iterations per pyramid level", closed(1, 100)),
+       number("min_step", &S::min_step, 1e-5, "m|rad", "a level stops when the step's norm falls below this", above(0)),
+       number("max_stalled_iterations", &S::max_stalled_iterations, 3, "-",
+              "a level stops after this many iterations without a lower mean distance", atLeast(1)),
+       choice("weight", &S::weight, RobustWeight::kCauchy, kRobustWeightChoices,
+              "robust weight of a residual, d = the point's distance to the nearest edge"),
+       number("cauchy_c2", &S::cauchy_c2, 1.5, "px^2", "c^2 of the Cauchy weight", above(0)),
+       number("border_px", &S::border_px, 2, "px", "points must project at least this far inside the image", closed(1, 20)),
+       number("min_points", &S::min_points, 30, "-", "a level with fewer visible points is skipped", atLeast(6)),
+       number("max_points", &S::max_points, 3000, "-", "at most this many reference points per level, evenly strided",
+              atLeast(1).orOff()),
+       number("max_normal_angle_deg", &S::max_normal_angle_deg, 45.0, "deg",
+              "finest level: weight 0 for a point whose nearest edge's signed normal is farther than this from its own edge's",
+              closed(0, 180)),
+       number("self_check_max_mean_distance_px", &S::self_check_max_mean_distance_px, 5.0, "px",
+              "self check: the mean distance of the visible points to the nearest edge at the finest level", above(0)),
+       number("self_check_min_visible_ratio", &S::self_check_min_visible_ratio, 0.5, "-",
+              "self check: the fraction of the reference points that land in the image", closed(0, 1)),
+       number("self_check_max_translation_sigma_m", &S::self_check_max_translation_sigma_m, 0.2, "m",
+              "self check: std. dev. of the translation along its weakest direction, for 1 px of edge noise (a fit "
+              "collapsed onto one spot of an edge fixes only a ray)",
+              above(0))},
+      {{[](const S& s) { return s.max_points == 0 || s.max_points >= s.min_points; }, "max_points: 0 (all) or at least min_points"}}};
+  return t;
+}
 
 }  // namespace edgevio::tracking

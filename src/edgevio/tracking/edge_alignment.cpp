@@ -11,23 +11,6 @@ namespace edgevio::tracking {
 using geometry::hat;
 using geometry::SE3;
 
-std::string AlignmentOptions::validate() const {
-  if (max_iterations_per_level < 1 || max_iterations_per_level > 100) return "max_iterations_per_level: in [1, 100]";
-  if (!(min_step > 0)) return "min_step: must be > 0";
-  if (max_stalled_iterations < 1) return "max_stalled_iterations: at least 1";
-  if (weight != "laplacian" && weight != "cauchy") return "weight: laplacian or cauchy";
-  if (residual != "point_to_line" && residual != "distance") return "residual: point_to_line or distance";
-  if (!(cauchy_c2 > 0)) return "cauchy_c2: must be > 0";
-  if (border_px < 1 || border_px > 20) return "border_px: in [1, 20]";
-  if (min_points < 6) return "min_points: at least 6";
-  if (max_points < 0 || (max_points > 0 && max_points < min_points)) return "max_points: 0 (all) or at least min_points";
-  if (!(max_normal_angle_deg >= 0 && max_normal_angle_deg <= 180)) return "max_normal_angle_deg: in [0, 180] (0: off)";
-  if (!(self_check_max_mean_distance_px > 0)) return "self_check_max_mean_distance_px: must be > 0";
-  if (!(self_check_min_visible_ratio >= 0 && self_check_min_visible_ratio <= 1)) return "self_check_min_visible_ratio: in [0, 1]";
-  if (!(self_check_max_translation_sigma_m > 0)) return "self_check_max_translation_sigma_m: must be > 0";
-  return {};
-}
-
 namespace {
 
 /// T as a rotation matrix and translation, converted once per pass over the
@@ -130,7 +113,7 @@ LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const std::vec
   double h[21] = {};
   // The distance field's consistent pull towards edges gives the wide basin
   // on coarse levels; the line residual refines on the finest one.
-  const bool p2l = o.residual == "point_to_line" && finest;
+  const bool p2l = o.residual == Residual::kPointToLine && finest;
   const bool check_normals = p2l && o.max_normal_angle_deg > 0 && normals && normals->size() == points.size();
   const double min_cos = std::cos(o.max_normal_angle_deg * kDegToRad);
   for (std::size_t idx = 0; idx < points.size(); idx += stride) {
@@ -167,7 +150,7 @@ AlignmentResult alignEdges(const vision::KeyframeDepth& reference, const vision:
                            const RotationPrior* prior) {
   const auto t0 = std::chrono::steady_clock::now();
   AlignmentResult res;
-  const bool laplacian = o.weight == "laplacian";
+  const bool laplacian = o.weight == RobustWeight::kLaplacian;
   const auto& ref = reference.points;
   const auto normalsOf = [&](std::size_t l) { return l < reference.normals.size() ? &reference.normals[l] : nullptr; };
   SE3 T = T_init;

@@ -1,14 +1,17 @@
 #pragma once
-// Edge-only visual odometry (METHOD.md §3): every frame is aligned to the
-// current keyframe; the self check and the keyframe policy decide when a
-// frame becomes the new keyframe (with its own stereo depth). The estimate is
-// causal: the pose of a frame is known when the frame has been processed.
+// Tracking (METHOD.md §3): a frame aligned to a keyframe from a prediction of
+// its pose. The tracker holds no state: which keyframe a frame is aligned to,
+// and when a frame becomes one, is the pipeline's keyframe policy
+// (pipeline/odometry.h). It answers three questions:
+//   makeKeyframe   a frame's reference points with stereo depth (block matching);
+//   track          the frame's pose relative to a keyframe, with the checks of
+//                  the alignment against the prediction;
+//   the visual keyframe votes of the result (edge counts, points, visibility).
 #include <opencv2/core.hpp>
 
 #include <functional>
 #include <memory>
 #include <optional>
-#include <string>
 
 #include "edgevio/camera/stereo_rectifier.h"
 #include "edgevio/tracking/edge_alignment.h"
@@ -59,103 +62,104 @@ PreparedFrame prepareFrame(const StereoFrame& frame, const camera::StereoRectifi
                            const vision::VisionOptions& vision);
 
 /// A keyframe's images as alignment needs them: its edge pyramid and its
-/// reference points with stereo depth. Immutable once made, shared with loop
-/// closure while the keyframe is in the window.
+/// reference points with stereo depth. Immutable once made; shared by
+/// tracking, back links and loop closure.
 struct KeyframeData {
   std::int64_t t_ns = 0;
   vision::EdgePyramid pyramid;
   vision::KeyframeDepth depth;
+  bool right_image_unreadable = false;  ///< its right image did not decode: it has no reference points
+  int referencePoints() const { return depth.points.empty() ? 0 : static_cast<int>(depth.points[0].size()); }
 };
 
-/// What happened to one frame.
-struct FrameTrack {
-  std::int64_t t_ns = 0;
-  geometry::SE3 T_w_b;            ///< causal estimate of the body pose
-  bool keyframe = false;
-  bool aligned = false;           ///< an alignment was attempted (not for the first frame)
-  bool self_check_passed = false;
-  bool gyro_check_failed = false; ///< the first alignment disagreed with the gyroscope (re-aligned)
-  bool translation_check_failed = false; ///< the first alignment's translation was far from the IMU prediction (re-aligned)
-  bool promoted_previous = false; ///< alignment to the keyframe failed; the previous frame became a keyframe
-  bool right_image_unreadable = false;  ///< a new keyframe's right image did not decode: it has no depth
-  std::string keyframe_reason;    ///< why it became a keyframe
-  AlignmentResult alignment;
-  int reference_points = 0;       ///< level-0 reference points of the keyframe it was aligned to
-  std::int64_t reference_t_ns = -1;  ///< timestamp of that keyframe (the tracking link's reference)
-  double canny_ms = 0, dt_ms = 0, lines_ms = 0, bm_ms = 0;  ///< dt_ms includes lines_ms
+/// Why a frame became a keyframe.
+enum class KeyframeReason {
+  kNone,
+  kFirstFrame,           ///< the sequence (or the visual tracking) starts here
+  kSelfCheckFailed,      ///< its alignment failed; it keeps the prediction
+  kEdgeCountChanged,     ///< level-0 or 1 edge counts of frame and keyframe differ by more than keyframe_edge_ratio
+  kTooFewPoints,         ///< the keyframe has fewer than keyframe_min_points reference points
+  kPointsLeavingView,    ///< fewer than keyframe_min_visible_ratio of them are in view
+  kLinkRejected,         ///< the estimator's external check refused its link, or the keyframe was not in the window
+  kKeyframeLeftWindow,   ///< marginalisation removed the keyframe: later links need a reference in the window
+  kWindowRestart,        ///< the window restarted at this frame (IMU gap, estimate blew up, first IMU reading)
 };
+inline constexpr options::Choice<KeyframeReason> kKeyframeReasonChoices[] = {
+    {KeyframeReason::kNone, "-", "not a keyframe"},
+    {KeyframeReason::kFirstFrame, "first frame", "tracking starts here"},
+    {KeyframeReason::kSelfCheckFailed, "self check failed", "its alignment failed; its pose is the prediction"},
+    {KeyframeReason::kEdgeCountChanged, "edge count changed", "level-0 or 1 edge counts differ by more than tracking.keyframe_edge_ratio"},
+    {KeyframeReason::kTooFewPoints, "too few reference points", "the keyframe has fewer than tracking.keyframe_min_points"},
+    {KeyframeReason::kPointsLeavingView, "points leaving the view", "fewer than tracking.keyframe_min_visible_ratio of them in view"},
+    {KeyframeReason::kLinkRejected, "link rejected", "the external check refused its link, or its keyframe had left the window"},
+    {KeyframeReason::kKeyframeLeftWindow, "keyframe left the window", "marginalisation removed the keyframe it was tracked against"},
+    {KeyframeReason::kWindowRestart, "window restart", "the estimator's window (re)started at this frame"}};
 
 /// What of a pose prediction the tracker's checks may trust: nothing (a first
 /// frame, no IMU), its rotation (gyroscope: the gyro check), or all of it (the
 /// IMU's prediction from the window's newest state: the translation check too).
 enum class PredictionReliability { kNone, kRotation, kPose };
 
-class EdgeTracker {
- public:
-  /// The gyroscope's body rotation from a time [ns] to the frame being tracked.
-  using GyroSince = std::function<std::optional<geometry::SO3>(std::int64_t)>;
+/// The gyroscope's body rotation R_bref_bcur from a time [ns] to the frame being tracked.
+using GyroSince = std::function<std::optional<geometry::SO3>(std::int64_t)>;
 
+/// Where a frame is expected to be (METHOD.md §3, initial guess).
+struct Prediction {
+  geometry::SE3 T_w_b;
+  PredictionReliability reliable = PredictionReliability::kNone;
+  /// IMU modes: the gyroscope alone since a keyframe, the alignment's rotation prior (empty: none).
+  GyroSince gyro_since;
+};
+
+/// Which check of an alignment against its prediction re-aligned it.
+enum class PredictionCheck { kNone, kGyro, kTranslation };
+inline constexpr options::Choice<PredictionCheck> kPredictionCheckChoices[] = {
+    {PredictionCheck::kNone, "-", "the first alignment was kept"},
+    {PredictionCheck::kGyro, "gyro", "its rotation was far from the gyroscope's: re-aligned on the fine levels"},
+    {PredictionCheck::kTranslation, "translation", "its translation was far from the IMU's: re-aligned, the closer fit kept"}};
+
+/// A frame aligned to a keyframe.
+struct Track {
+  AlignmentResult alignment;
+  PredictionCheck check = PredictionCheck::kNone;
+  geometry::SE3 T_w_b;  ///< the frame's pose from the alignment (meaningful when it passed the self check)
+  /// The visual reasons for a new keyframe (METHOD.md §3): edge counts, points, visibility; kNone when the
+  /// alignment failed (the policy decides then).
+  KeyframeReason keyframe_vote = KeyframeReason::kNone;
+  bool passed() const { return alignment.self_check_passed; }
+};
+
+/// The front end as the pipeline sees it. An interface so that the pipeline
+/// can be tested on synthetic tracks, without images.
+class Tracker {
+ public:
+  virtual ~Tracker() = default;
+  /// The frame's reference points from stereo block matching; the frame's pyramid moves into the keyframe.
+  virtual std::shared_ptr<const KeyframeData> makeKeyframe(PreparedFrame frame) const = 0;
+  /// Aligns `frame` to `keyframe`, whose body pose is T_w_b_keyframe, from the prediction.
+  virtual Track track(const PreparedFrame& frame, const KeyframeData& keyframe, const geometry::SE3& T_w_b_keyframe,
+                      const Prediction& prediction) const = 0;
+};
+
+/// Edge alignment (METHOD.md §3) behind the Tracker interface.
+class EdgeTracker final : public Tracker {
+ public:
   EdgeTracker(const camera::StereoRectifier& rectifier, const vision::VisionOptions& vision,
               const AlignmentOptions& alignment, const TrackingOptions& tracking);
-
-  /// The first frame starts at T_w_b_init and becomes the first keyframe.
-  /// `R_prev_cur` is the body rotation since the previous frame (from the
-  /// gyroscope) when available.
-  FrameTrack track(PreparedFrame frame, const std::optional<geometry::SO3>& R_prev_cur,
-                   const geometry::SE3& T_w_b_init = geometry::SE3());
-
-  /// The same with a full-pose prediction (the IMU's, METHOD.md §5): the
-  /// initial guess of the alignment, the pose of a first frame, and the
-  /// frame's pose when the alignment fails. `reliable` says which checks
-  /// against the prediction apply.
-  /// `gyro_since(t_ref)`: the body rotation R_bref_bcur from time t_ref to this
-  /// frame by the gyroscope alone (empty: none); the alignment's rotation prior.
-  FrameTrack track(PreparedFrame frame, const geometry::SE3& T_w_b_pred, PredictionReliability reliable,
-                   const GyroSince& gyro_since = {});
-
-  /// Replaces the poses of the keyframe and of the last frame with better
-  /// estimates (the window's), looked up by timestamp.
-  void correctPoses(const std::function<std::optional<geometry::SE3>(std::int64_t)>& pose_of);
-  /// Makes the last tracked frame the keyframe (the estimator rejected its
-  /// link, or the old keyframe left the window). False when it already is.
-  bool promoteLastFrame();
-  std::optional<std::int64_t> keyframeTime() const;
-  /// The current keyframe's data (null before the first frame).
-  std::shared_ptr<const KeyframeData> keyframeData() const;
-
-  int consecutiveFailures() const { return consecutive_failures_; }
-  bool lost() const { return consecutive_failures_ >= tracking_.lost_after_failures; }
+  std::shared_ptr<const KeyframeData> makeKeyframe(PreparedFrame frame) const override;
+  Track track(const PreparedFrame& frame, const KeyframeData& keyframe, const geometry::SE3& T_w_b_keyframe,
+              const Prediction& prediction) const override;
 
  private:
-  struct Keyframe {
-    std::shared_ptr<const KeyframeData> data;
-    geometry::SE3 T_w_c;
-  };
-  void makeKeyframe(vision::EdgePyramid pyramid, const LazyImage& right_full, const geometry::SE3& T_w_c, std::int64_t t_ns,
-                    FrameTrack* out);
-  /// Aligns `pyr` to the current keyframe from `T_w_b_pred`, with the gyro and
-  /// translation checks; sets the flags of the checks that failed in `checks`.
-  AlignmentResult alignToKeyframe(const vision::EdgePyramid& pyr, const geometry::SE3& T_w_b_pred,
-                                  PredictionReliability reliable, const GyroSince& gyro_since, FrameTrack* checks) const;
-  /// The previous frame, kept so that it can become a keyframe when the current
-  /// frame fails to align to the old one (its pose is already known).
-  struct Previous {
-    vision::EdgePyramid pyramid;
-    LazyImage right;
-    geometry::SE3 T_w_b;
-    std::int64_t t_ns = 0;
-  };
-  std::optional<Previous> previous_;
+  AlignmentResult align(const vision::EdgePyramid& pyr, const KeyframeData& keyframe, const geometry::SE3& T_nr_init,
+                        const Prediction& prediction, PredictionCheck* check) const;
+  KeyframeReason keyframeVote(const vision::EdgePyramid& pyr, const KeyframeData& keyframe, const AlignmentResult& a) const;
 
   const camera::StereoRectifier& rect_;
   vision::VisionOptions vision_;
   AlignmentOptions alignment_;
   TrackingOptions tracking_;
-  geometry::SE3 T_b_c_;  // body → rectified left camera
-  std::optional<Keyframe> keyframe_;
-  geometry::SE3 T_w_b_prev_, T_w_b_prev2_;
-  int consecutive_failures_ = 0;
-  std::int64_t last_t_ns_ = -1;
+  geometry::SE3 T_b_c_;  ///< body → rectified left camera
 };
 
 }  // namespace edgevio::tracking

@@ -7,23 +7,6 @@
 
 namespace edgevio::vision {
 
-std::string VisionOptions::validate() const {
-  if (levels < 1 || levels > 6) return "levels: must be in [1, 6]";
-  if (canny_thresholds != "adaptive" && canny_thresholds != "fixed") return "canny_thresholds: adaptive or fixed";
-  if (!(canny_min_low >= 0 && canny_max_high > canny_min_low)) return "canny_min_low < canny_max_high required";
-  if (!(canny_fixed_low > 0 && canny_fixed_high > canny_fixed_low)) return "canny_fixed_low < canny_fixed_high required";
-  if (stereo_num_disparities < 16 || stereo_num_disparities % 16 != 0) return "stereo_num_disparities: a multiple of 16";
-  if (stereo_block_size < 5 || stereo_block_size % 2 == 0 || stereo_block_size > 51) return "stereo_block_size: odd, in [5, 51]";
-  if (!(stereo_min_disparity >= 0)) return "stereo_min_disparity: must be >= 0";
-  if (!(stereo_disparity_sigma > 0)) return "stereo_disparity_sigma: must be > 0";
-  if (stereo_full_resolution_block_size < 5 || stereo_full_resolution_block_size % 2 == 0 || stereo_full_resolution_block_size > 51)
-    return "stereo_full_resolution_block_size: odd, in [5, 51]";
-  if (!(stereo_full_resolution_max_difference_px > 0)) return "stereo_full_resolution_max_difference_px: must be > 0";
-  if (!(stereo_discontinuity_ratio == 0 || stereo_discontinuity_ratio > 1)) return "stereo_discontinuity_ratio: 0 (off) or > 1";
-  if (stereo_discontinuity_radius_px < 1 || stereo_discontinuity_radius_px > 25) return "stereo_discontinuity_radius_px: in [1, 25]";
-  return {};
-}
-
 LevelCamera LevelCamera::half() const {
   return {fx / 2, fy / 2, (cx + 0.5) / 2 - 0.5, (cy + 0.5) / 2 - 0.5, width / 2, height / 2};
 }
@@ -41,7 +24,7 @@ cv::Mat downsample2(const cv::Mat& image) {
 }
 
 std::pair<double, double> cannyThresholds(const cv::Mat& image, const VisionOptions& o) {
-  if (o.canny_thresholds == "fixed") return {o.canny_fixed_low, o.canny_fixed_high};
+  if (o.canny_thresholds == CannyThresholds::kFixed) return {o.canny_fixed_low, o.canny_fixed_high};
   cv::Mat unused;
   const double t = cv::threshold(image, unused, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
   const double low = std::clamp(t - o.canny_otsu_offset, o.canny_min_low, o.canny_max_high - 1.0);

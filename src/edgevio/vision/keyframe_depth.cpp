@@ -34,9 +34,9 @@ void poolHalf(cv::Mat* rho, cv::Mat* var) {
 }
 
 /// Block matching on a rectified pair; fills inverse depth ρ = d/(f·b) and its
-/// variance (0 = invalid: d below `min_disparity`) and returns the disparity.
-cv::Mat_<float> inverseDepth(const cv::Mat& left, const cv::Mat& right, double fb, int num_disparities, int block_size,
-                             double min_disparity, const VisionOptions& o, cv::Mat* rho, cv::Mat* var) {
+/// variance (0 = invalid: d below `min_disparity`).
+void inverseDepth(const cv::Mat& left, const cv::Mat& right, double fb, int num_disparities, int block_size,
+                  double min_disparity, const VisionOptions& o, cv::Mat* rho, cv::Mat* var) {
   cv::Ptr<cv::StereoBM> bm = cv::StereoBM::create(num_disparities, block_size);
   cv::Mat_<float> disparity;  // a float output skips the biased 1/16-px rounding of CV_16S
   bm->compute(left, right, disparity);
@@ -50,7 +50,6 @@ cv::Mat_<float> inverseDepth(const cv::Mat& left, const cv::Mat& right, double f
       rho->at<float>(v, u) = ok ? static_cast<float>(d / fb) : 0.0f;
       var->at<float>(v, u) = ok ? var0 : 0.0f;
     }
-  return disparity;
 }
 
 /// Level-0 pixels (CV_8UC1, non-zero) whose valid inverse depths within
@@ -75,23 +74,8 @@ KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right
   const auto t0 = std::chrono::steady_clock::now();
   cv::Mat rho, var;  // inverse depth and its variance per level-0 pixel; a variance of 0 marks an invalid pixel
   const double fb0 = left.levels[0].camera.fx * baseline_m;
-  const cv::Mat_<float> d0 = inverseDepth(left.levels[0].image, downsample2(right_full), fb0, o.stereo_num_disparities,
-                                          o.stereo_block_size, o.stereo_min_disparity, o, &rho, &var);
-  if (o.stereo_full_resolution) {
-    cv::Mat rho_f, var_f;
-    inverseDepth(left.full, right_full, 2.0 * fb0, 2 * o.stereo_num_disparities, o.stereo_full_resolution_block_size,
-                 2.0 * o.stereo_min_disparity, o, &rho_f, &var_f);
-    poolHalf(&rho_f, &var_f);
-    // Where the two disagree, one of them matched the wrong block (in the
-    // near figure8 room, 2 of 21 keyframes aligned 1-2 cm off without this).
-    for (int v = 0; v < rho.rows && v < rho_f.rows; ++v)
-      for (int u = 0; u < rho.cols && u < rho_f.cols; ++u)
-        if (var.at<float>(v, u) > 0.0f && var_f.at<float>(v, u) > 0.0f &&
-            std::abs(rho_f.at<float>(v, u) * fb0 - d0(v, u)) <= o.stereo_full_resolution_max_difference_px) {
-          rho.at<float>(v, u) = rho_f.at<float>(v, u);
-          var.at<float>(v, u) = var_f.at<float>(v, u);
-        }
-  }
+  inverseDepth(left.levels[0].image, downsample2(right_full), fb0, o.stereo_num_disparities, o.stereo_block_size,
+               o.stereo_min_disparity, o, &rho, &var);
   const cv::Mat discontinuous = depthDiscontinuities(rho, var, o);
   out.bm_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 

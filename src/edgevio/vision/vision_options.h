@@ -1,47 +1,64 @@
 #pragma once
-#include <string>
+#include "edgevio/common/options.h"
 
 namespace edgevio::vision {
 
-/// Options of the front end's image processing (config section `vision`; METHOD.md §3).
-struct VisionOptions {
-  int levels = 4;                      ///< pyramid levels (376x240 ... 47x30 for EuRoC; paper: 3) [-]
-  std::string canny_thresholds = "adaptive";  ///< adaptive (from Otsu) or fixed
-  double canny_otsu_offset = 10.0;     ///< adaptive thresholds are (t − offset, t + offset), t = Otsu threshold [grey level]
-  double canny_min_low = 20.0;         ///< lower clamp of the adaptive low threshold [gradient]
-  double canny_max_high = 250.0;       ///< upper clamp of the adaptive high threshold [gradient]
-  double canny_fixed_low = 40.0;       ///< fixed mode low threshold [gradient]
-  double canny_fixed_high = 80.0;      ///< fixed mode high threshold [gradient]
-  int stereo_num_disparities = 64;     ///< StereoBM search range at level 0 (multiple of 16) [px]
-  int stereo_block_size = 13;          ///< StereoBM block (odd) [px]
-  double stereo_min_disparity = 3.0;   ///< smaller level-0 disparities are invalid (too far) [px]
-  double stereo_disparity_sigma = 0.5; ///< std. dev. of a block-matching disparity in the matched pair's pixels, for depth pooling [px]
-  bool stereo_full_resolution = false; ///< also match the camera-resolution pair, pool it into level 0, keep it where it agrees
-  int stereo_full_resolution_block_size = 21;  ///< its StereoBM block (odd) [full-resolution px]
-  double stereo_full_resolution_max_difference_px = 1.0;  ///< kept where within this of the level-0 disparity [level-0 px]
-  double stereo_discontinuity_ratio = 1.3;  ///< no reference point where the inverse depths within the radius span more than this factor; 0: off [-]
-  int stereo_discontinuity_radius_px = 9;   ///< ... radius of that neighbourhood at level 0 [px]
+/// How the Canny thresholds of a level are chosen (METHOD.md §3).
+enum class CannyThresholds { kAdaptive, kFixed };
+inline constexpr options::Choice<CannyThresholds> kCannyThresholdChoices[] = {
+    {CannyThresholds::kAdaptive, "adaptive", "from each level's Otsu threshold t: (t - offset, t + offset), clamped"},
+    {CannyThresholds::kFixed, "fixed", "canny_fixed_low and canny_fixed_high"}};
 
-  template <class Visitor>
-  void visit(Visitor& v) {
-    v("levels", levels, "-", "pyramid levels for coarse-to-fine alignment (level 0 = half the camera resolution)");
-    v("canny_thresholds", canny_thresholds, "-", "adaptive (from each level's Otsu threshold) | fixed");
-    v("canny_otsu_offset", canny_otsu_offset, "grey", "adaptive Canny thresholds are (t - offset, t + offset), t = Otsu");
-    v("canny_min_low", canny_min_low, "grad", "lower clamp of the adaptive low threshold");
-    v("canny_max_high", canny_max_high, "grad", "upper clamp of the adaptive high threshold");
-    v("canny_fixed_low", canny_fixed_low, "grad", "fixed-mode low threshold");
-    v("canny_fixed_high", canny_fixed_high, "grad", "fixed-mode high threshold");
-    v("stereo_num_disparities", stereo_num_disparities, "px", "StereoBM disparity range at level 0 (multiple of 16)");
-    v("stereo_block_size", stereo_block_size, "px", "StereoBM block size (odd) at level 0");
-    v("stereo_min_disparity", stereo_min_disparity, "px", "smaller level-0 disparities are invalid");
-    v("stereo_disparity_sigma", stereo_disparity_sigma, "px", "disparity std. dev. in the matched pair's pixels, weights depth pooling");
-    v("stereo_full_resolution", stereo_full_resolution, "-", "also match the camera-resolution pair, pooled into level 0, kept where it agrees with level 0");
-    v("stereo_full_resolution_block_size", stereo_full_resolution_block_size, "px", "its StereoBM block size (odd, full-resolution pixels)");
-    v("stereo_full_resolution_max_difference_px", stereo_full_resolution_max_difference_px, "px", "kept where within this of the level-0 disparity (level-0 pixels)");
-    v("stereo_discontinuity_ratio", stereo_discontinuity_ratio, "-", "no depth where the valid inverse depths within the radius span more than this factor (depth discontinuities); 0: off");
-    v("stereo_discontinuity_radius_px", stereo_discontinuity_radius_px, "px", "radius of that neighbourhood at level 0");
-  }
-  std::string validate() const;
+/// The front end's image processing: pyramid, Canny, keyframe stereo depth
+/// (config section `vision`; METHOD.md §3).
+struct VisionOptions {
+  int levels;
+  CannyThresholds canny_thresholds;
+  double canny_otsu_offset;
+  double canny_min_low;
+  double canny_max_high;
+  double canny_fixed_low;
+  double canny_fixed_high;
+  int stereo_num_disparities;
+  int stereo_block_size;
+  double stereo_min_disparity;
+  double stereo_disparity_sigma;
+  double stereo_discontinuity_ratio;
+  int stereo_discontinuity_radius_px;
+
+  VisionOptions() { options::setDefaults(*this); }
+  static const options::Table<VisionOptions>& table();
 };
+
+inline const options::Table<VisionOptions>& VisionOptions::table() {
+  using S = VisionOptions;
+  using namespace options;
+  static const Table<S> t{
+      {number("levels", &S::levels, 4, "-",
+              "pyramid levels of the coarse-to-fine alignment; level 0 is half the camera resolution (paper: 3)", closed(1, 6)),
+       choice("canny_thresholds", &S::canny_thresholds, CannyThresholds::kAdaptive, kCannyThresholdChoices,
+              "Canny thresholds of each level"),
+       number("canny_otsu_offset", &S::canny_otsu_offset, 10.0, "grey", "the offset of the adaptive thresholds from Otsu's", atLeast(0)),
+       number("canny_min_low", &S::canny_min_low, 20.0, "grad", "lower clamp of the adaptive low threshold", atLeast(0)),
+       number("canny_max_high", &S::canny_max_high, 250.0, "grad", "upper clamp of the adaptive high threshold", above(0)),
+       number("canny_fixed_low", &S::canny_fixed_low, 40.0, "grad", "fixed mode: low threshold", above(0)),
+       number("canny_fixed_high", &S::canny_fixed_high, 80.0, "grad", "fixed mode: high threshold", above(0)),
+       number("stereo_num_disparities", &S::stereo_num_disparities, 64, "px", "StereoBM disparity range at level 0",
+              atLeast(16).multipleOf(16)),
+       number("stereo_block_size", &S::stereo_block_size, 13, "px", "StereoBM block size at level 0", closed(5, 51).odd()),
+       number("stereo_min_disparity", &S::stereo_min_disparity, 3.0, "px", "smaller level-0 disparities are invalid (too far)",
+              atLeast(0)),
+       number("stereo_disparity_sigma", &S::stereo_disparity_sigma, 0.5, "px",
+              "std. dev. of a block-matching disparity, which weights the pooling of depth up the pyramid", above(0)),
+       number("stereo_discontinuity_ratio", &S::stereo_discontinuity_ratio, 1.3, "-",
+              "level 0 has no reference point where the valid inverse depths within the radius span more than this factor "
+              "(a block straddling an occlusion boundary matches the foreground)",
+              above(1).orOff()),
+       number("stereo_discontinuity_radius_px", &S::stereo_discontinuity_radius_px, 9, "px",
+              "radius of that neighbourhood at level 0", closed(1, 25))},
+      {{[](const S& s) { return s.canny_min_low < s.canny_max_high; }, "canny_min_low: must be below canny_max_high"},
+       {[](const S& s) { return s.canny_fixed_low < s.canny_fixed_high; }, "canny_fixed_low: must be below canny_fixed_high"}}};
+  return t;
+}
 
 }  // namespace edgevio::vision

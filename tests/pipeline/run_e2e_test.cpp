@@ -1,6 +1,6 @@
-// `edgevio run --mode edge-only` end to end: the real EuRoC folder (static rig),
-// a short rendered sequence with known motion, determinism and outputs.
-#include "edgevio/pipeline/offline_run.h"
+// `edgevio run` end to end: the real EuRoC folder (static rig), a short
+// rendered sequence with known motion, determinism and outputs.
+#include "edgevio/pipeline/run.h"
 
 #include <gtest/gtest.h>
 
@@ -15,8 +15,10 @@
 #include "common/mini_dataset.h"
 #include "common/test_support.h"
 #include "edgevio/common/error.h"
+#include "edgevio/common/table_reader.h"
 #include "edgevio/eval/metrics.h"
 #include "edgevio/io/trajectory_io.h"
+#include "edgevio/pipeline/mode.h"
 #include "edgevio/sim/simulator.h"
 
 namespace edgevio::pipeline {
@@ -24,11 +26,17 @@ namespace {
 
 using test::TempDir;
 
+const Mode kEdgeOnly{false, false}, kEdgeLoop{false, true}, kEdgeImu{true, false}, kFull{true, true};
 
-TEST(OfflineRun, RealStaticFolderDriftsLessThan5cm) {
+RunRequest request(const std::string& dataset, const std::string& out, Mode mode, int skip = 0) {
+  return {dataset, out, mode, skip, false};
+}
+
+
+TEST(Run, RealStaticFolderDriftsLessThan5cm) {
   EDGEVIO_REQUIRE_SHARED_DATA("euroc/V1_01_easy_micro");
   TempDir out;
-  const RunSummary s = runOffline({data_path, out.path(), "edge-only", 0}, Config{});
+  const RunSummary s = run(request(data_path, out.path(), kEdgeOnly), Config{});
   EXPECT_FALSE(s.failed) << s.failure;
   EXPECT_EQ(s.frames, 95u);
   const io::Trajectory est = io::readTrajectory(out.file("trajectory_tum.txt"));
@@ -47,15 +55,15 @@ TEST(OfflineRun, RealStaticFolderDriftsLessThan5cm) {
   // the ground truth's (yaw is unobservable and not compared).
   const Vec3 up_est = est.front().T_w_b.so3().inverse() * Vec3::UnitZ();
   const Vec3 up_gt = gt.front().T_w_b.so3().inverse() * Vec3::UnitZ();
-  const double angle_deg = std::acos(std::clamp(up_est.dot(up_gt), -1.0, 1.0)) * 180.0 / 3.14159265358979;
+  const double angle_deg = std::acos(std::clamp(up_est.dot(up_gt), -1.0, 1.0)) * kRadToDeg;
   std::printf("gravity direction vs ground truth: %.3f deg\n", angle_deg);
   EXPECT_LT(angle_deg, 1.0);
 }
 
-TEST(OfflineRun, RealStaticFolderEdgeImuFindsGravityAndGyroBias) {
+TEST(Run, RealStaticFolderEdgeImuFindsGravityAndGyroBias) {
   EDGEVIO_REQUIRE_SHARED_DATA("euroc/V1_01_easy_micro");
   TempDir out;
-  const RunSummary s = runOffline({data_path, out.path(), "edge+imu", 0}, Config{});
+  const RunSummary s = run(request(data_path, out.path(), kEdgeImu), Config{});
   EXPECT_FALSE(s.failed) << s.failure;
   EXPECT_EQ(s.estimator_resets, 0u);
   const io::Trajectory est = io::readTrajectory(out.file("trajectory.csv"));  // EuRoC format: with velocity and biases
@@ -72,7 +80,7 @@ TEST(OfflineRun, RealStaticFolderEdgeImuFindsGravityAndGyroBias) {
     drift = std::max(drift, (e.T_w_b.translation() - est.front().T_w_b.translation()).norm());
     const Vec3 up_est = e.T_w_b.so3().inverse() * Vec3::UnitZ();
     const Vec3 up_gt = gtAt(e.t_ns).T_w_b.so3().inverse() * Vec3::UnitZ();
-    worst_gravity_deg = std::max(worst_gravity_deg, std::acos(std::clamp(up_est.dot(up_gt), -1.0, 1.0)) * 180.0 / 3.14159265358979);
+    worst_gravity_deg = std::max(worst_gravity_deg, std::acos(std::clamp(up_est.dot(up_gt), -1.0, 1.0)) * kRadToDeg);
   }
   const double bias_error = (est.back().b_g - gtAt(est.back().t_ns).b_g).norm();
   std::printf("real V1_01 micro, edge+imu: drift %.4f m, gravity within %.3f deg, gyro bias %.5f rad/s from ground truth\n",
@@ -108,35 +116,24 @@ const Simulated& simulated() {
 /// of the tracking links frames.csv reports (rows whose alignment passed the
 /// self check and was not rejected), read by column name.
 void medianLinkErrors(const std::string& frames_csv, const io::Trajectory& gt, double* trans_m, double* rot_deg) {
-  std::istringstream in(test::readFile(frames_csv));
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::stringstream header(line);
-  for (std::string n; std::getline(header, n, ',');) names.push_back(n);
-  const auto column = [&](const char* name) {
-    return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
-  };
+  TableReader in(frames_csv, TableReader::Separator::kComma, TableReader::Header::kColumnNames);
   const auto poseAt = [&](std::int64_t t) -> const geometry::SE3* {
     for (const auto& g : gt)
       if (std::llabs(g.t_ns - t) < 1000000) return &g.T_w_b;
     return nullptr;
   };
   std::vector<double> et, er;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream row(line);
-    for (std::string c; std::getline(row, c, ',');) f.push_back(c);
-    if (f.size() != names.size() || f[column("self_check")] != "1" || f[column("external_check")] == "rejected") continue;
-    const geometry::SE3* T_w_bn = poseAt(std::stoll(f[column("timestamp_ns")]));
-    const geometry::SE3* T_w_br = poseAt(std::stoll(f[column("reference_timestamp_ns")]));
+  while (in.next()) {
+    if (in.field(in.column("self_check")) != "1" || in.field(in.column("external_check")) == "rejected") continue;
+    const geometry::SE3* T_w_bn = poseAt(in.integer(in.column("timestamp_ns")));
+    const geometry::SE3* T_w_br = poseAt(in.integer(in.column("reference_timestamp_ns")));
     if (!T_w_bn || !T_w_br) continue;
-    const auto num = [&](const char* name) { return std::stod(f[column(name)]); };
+    const auto num = [&](const char* name) { return in.number(in.column(name)); };
     const geometry::SE3 link(geometry::SO3(geometry::quaternionFromXyzw(num("link_qx"), num("link_qy"), num("link_qz"), num("link_qw"))),
                              Vec3(num("link_tx"), num("link_ty"), num("link_tz")));
     const geometry::SE3 E = (T_w_bn->inverse() * *T_w_br).inverse() * link;
     et.push_back(E.translation().norm());
-    er.push_back(geometry::angle(E.so3()) * 180.0 / 3.14159265358979);
+    er.push_back(geometry::angle(E.so3()) * kRadToDeg);
   }
   ASSERT_GE(et.size(), 40u);
   std::nth_element(et.begin(), et.begin() + static_cast<std::ptrdiff_t>(et.size() / 2), et.end());
@@ -145,10 +142,10 @@ void medianLinkErrors(const std::string& frames_csv, const io::Trajectory& gt, d
   *rot_deg = er[er.size() / 2];
 }
 
-TEST(OfflineRun, ShortRenderedSequenceIsAccurateAndDeterministic) {
+TEST(Run, ShortRenderedSequenceIsAccurateAndDeterministic) {
   TempDir a, b;
-  const RunSummary s = runOffline({simulated().dataset, a.path(), "edge-only", 0}, Config{});
-  runOffline({simulated().dataset, b.path(), "edge-only", 0}, Config{});
+  const RunSummary s = run(request(simulated().dataset, a.path(), kEdgeOnly), Config{});
+  run(request(simulated().dataset, b.path(), kEdgeOnly), Config{});
   EXPECT_FALSE(s.failed) << s.failure;
   EXPECT_EQ(s.frames, 81u);
   EXPECT_EQ(test::readFile(a.file("trajectory_tum.txt")), test::readFile(b.file("trajectory_tum.txt"))) << "not bit-for-bit repeatable";
@@ -173,10 +170,10 @@ TEST(OfflineRun, ShortRenderedSequenceIsAccurateAndDeterministic) {
   EXPECT_TRUE(std::filesystem::exists(a.file("config.yaml")));
 }
 
-TEST(OfflineRun, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
+TEST(Run, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
   TempDir a, b;
-  const RunSummary s = runOffline({simulated().dataset, a.path(), "edge+imu", 0}, Config{});
-  runOffline({simulated().dataset, b.path(), "edge+imu", 0}, Config{});
+  const RunSummary s = run(request(simulated().dataset, a.path(), kEdgeImu), Config{});
+  run(request(simulated().dataset, b.path(), kEdgeImu), Config{});
   EXPECT_FALSE(s.failed) << s.failure;
   EXPECT_EQ(s.estimator_resets, 0u);
   EXPECT_EQ(test::readFile(a.file("trajectory.csv")), test::readFile(b.file("trajectory.csv"))) << "not bit-for-bit repeatable";
@@ -215,7 +212,7 @@ TEST(OfflineRun, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
   EXPECT_NE(summary.find("\"translation_check_realignments\": " + std::to_string(translation_rows)), std::string::npos);
 }
 
-TEST(OfflineRun, ShortRevisitingRenderLoopClosuresAreFoundAndDoNotHurt) {
+TEST(Run, ShortRevisitingRenderLoopClosuresAreFoundAndDoNotHurt) {
   // 10 s along EuRoC V1_02, where the drone turns back over places it saw a
   // few seconds before, within the window; real IMU replayed. The clip drifts
   // too little (ATE 9-17 mm) for loop closure to lower its ATE measurably: on
@@ -236,9 +233,10 @@ TEST(OfflineRun, ShortRevisitingRenderLoopClosuresAreFoundAndDoNotHurt) {
   Config without;
   without.loop.max_coarse_attempts = 0;
   const io::Trajectory gt = io::readTrajectory(req.out_dir + "/mav0/state_groundtruth_estimate0/data.csv");
-  for (const std::string mode : {"edge+loop", "edge+imu+loop"}) {
-    const RunSummary with_loops = runOffline({req.out_dir, dir.file(mode + "-on"), mode, 0}, Config{});
-    const RunSummary no_loops = runOffline({req.out_dir, dir.file(mode + "-off"), mode, 0}, without);
+  for (const Mode m : {kEdgeLoop, kFull}) {
+    const std::string mode = modeName(m);
+    const RunSummary with_loops = run(request(req.out_dir, dir.file(mode + "-on"), m), Config{});
+    const RunSummary no_loops = run(request(req.out_dir, dir.file(mode + "-off"), m), without);
     EXPECT_FALSE(with_loops.failed || no_loops.failed);
     const double ate_on = eval::evaluate(gt, io::readTrajectory(dir.file(mode + "-on/trajectory_tum.txt")), {}).ate_rmse_m;
     const double ate_off = eval::evaluate(gt, io::readTrajectory(dir.file(mode + "-off/trajectory_tum.txt")), {}).ate_rmse_m;
@@ -249,16 +247,16 @@ TEST(OfflineRun, ShortRevisitingRenderLoopClosuresAreFoundAndDoNotHurt) {
     EXPECT_LT(ate_on, ate_off + 0.0005) << mode;
   }
   // Loop closure has a time budget in real time only: offline stays bit-for-bit repeatable.
-  runOffline({req.out_dir, dir.file("again"), "edge+imu+loop", 0}, Config{});
+  run(request(req.out_dir, dir.file("again"), kFull), Config{});
   EXPECT_EQ(test::readFile(dir.file("edge+imu+loop-on/trajectory.csv")), test::readFile(dir.file("again/trajectory.csv")))
       << "edge+imu+loop is not repeatable";
 }
 
-TEST(OfflineRun, ShortRenderedSequenceInRealTimeAccountsForEveryFrame) {
+TEST(Run, ShortRenderedSequenceInRealTimeAccountsForEveryFrame) {
   TempDir out;
-  RunRequest r{simulated().dataset, out.path(), "edge+imu", 0};
+  RunRequest r = request(simulated().dataset, out.path(), kEdgeImu);
   r.realtime = true;
-  const RunSummary s = runOffline(r, Config{});
+  const RunSummary s = run(r, Config{});
   std::printf("4 s figure8 in real time: %zu frames processed, %zu dropped, wall %.2f s\n", s.frames, s.dropped_frames, s.wall_s);
   EXPECT_EQ(s.frames + s.dropped_frames, 81u);  // every frame is processed or counted as dropped
   EXPECT_GT(s.frames, 0u);
@@ -268,7 +266,7 @@ TEST(OfflineRun, ShortRenderedSequenceInRealTimeAccountsForEveryFrame) {
   EXPECT_NE(summary.find("\"dropped_frames\": " + std::to_string(s.dropped_frames)), std::string::npos);
 }
 
-TEST(OfflineRun, ShortRenderedSequenceWithAnImuGapRestartsAndRecovers) {
+TEST(Run, ShortRenderedSequenceWithAnImuGapRestartsAndRecovers) {
   // The rendered folder with 0.5 s of IMU readings removed in the middle
   // (images shared through links, the IMU log rewritten).
   namespace fs = std::filesystem;
@@ -290,7 +288,7 @@ TEST(OfflineRun, ShortRenderedSequenceWithAnImuGapRestartsAndRecovers) {
     imu << line << "\n";
   }
   imu.close();
-  const RunSummary s = runOffline({out.file("gap"), out.file("run"), "edge+imu", 0}, Config{});
+  const RunSummary s = run(request(out.file("gap"), out.file("run"), kEdgeImu), Config{});
   EXPECT_FALSE(s.failed) << s.failure;
   EXPECT_GE(s.estimator_resets, 1u);
   ASSERT_FALSE(s.events.empty());
@@ -308,22 +306,11 @@ TEST(OfflineRun, ShortRenderedSequenceWithAnImuGapRestartsAndRecovers) {
   EXPECT_LT(r.ate_rmse_m, 0.25);
 }
 
-TEST(OfflineRun, SkipKeepsEveryKPlusOneFrame) {
+TEST(Run, SkipKeepsEveryKPlusOneFrame) {
   TempDir out;
-  const RunSummary s = runOffline({simulated().dataset, out.path(), "edge-only", 3}, Config{});
+  const RunSummary s = run(request(simulated().dataset, out.path(), kEdgeOnly, 3), Config{});
   EXPECT_EQ(s.frames, 21u);  // 81 frames, every 4th
   EXPECT_FALSE(s.failed) << s.failure;
-}
-
-TEST(OfflineRun, BadInputIsAnError) {
-  TempDir out;
-  const std::string mini = test::writeMiniDataset(out);
-  EXPECT_THROW(runOffline({out.file("missing"), out.file("o"), "edge-only", 0}, Config{}), InputError);
-  EXPECT_THROW(runOffline({mini, out.file("o"), "imu-only", 0}, Config{}), InputError);
-  EXPECT_THROW(runOffline({mini, out.file("o"), "edge-only", -1}, Config{}), InputError);
-  Config bad;
-  bad.alignment.weight = "tukey";
-  EXPECT_THROW(runOffline({mini, out.file("o"), "edge-only", 0}, bad), InputError);
 }
 
 }  // namespace

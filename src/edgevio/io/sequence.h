@@ -1,0 +1,54 @@
+#pragma once
+// A recorded stereo + IMU sequence as the pipeline reads it: the calibration,
+// the whole IMU log (small), and stereo frames one at a time, decoded when
+// asked for and never held. An EuRoC/ASL folder is one (io/euroc_dataset.h).
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "edgevio/camera/calibration.h"
+#include "edgevio/imu/imu_types.h"
+#include "edgevio/io/dataset_options.h"
+#include "edgevio/io/trajectory_io.h"
+
+namespace edgevio::io {
+
+class Sequence {
+ public:
+  virtual ~Sequence() = default;
+  /// A short name (the folder's), for reports.
+  virtual std::string name() const = 0;
+  /// Where it was read from, as an absolute path.
+  virtual std::string location() const = 0;
+  virtual const camera::StereoRig& calibration() const = 0;
+  virtual const std::vector<imu::ImuSample>& imu() const = 0;
+  /// Ground truth, empty when the sequence has none.
+  virtual const Trajectory& groundTruth() const = 0;
+
+  /// Stereo frames (pairs of left and right images), in time order.
+  virtual std::size_t frameCount() const = 0;
+  virtual std::int64_t frameTime(std::size_t i) const = 0;
+  /// Frame i's left image, raw. nullopt (counted, with a warning) when it
+  /// does not decode; InputError when its size is not the calibration's.
+  virtual std::optional<cv::Mat> leftImage(std::size_t i) = 0;
+  /// How to decode frame i's right image, raw, later and on any thread
+  /// (only keyframes need it); the loader returns an empty image when it
+  /// does not decode or its size is not the calibration's.
+  virtual std::function<cv::Mat()> rightImageLoader(std::size_t i) const = 0;
+
+  /// Warnings collected so far (opening and every image read).
+  virtual const std::vector<std::string>& warnings() const = 0;
+  /// Images that were missing or did not decode so far.
+  virtual std::size_t unreadableImages() const = 0;
+};
+
+/// Opens a sequence: an EuRoC/ASL folder (the folder holding mav0/, or mav0
+/// itself). Throws InputError naming what is wrong.
+std::unique_ptr<Sequence> openSequence(const std::string& path, const DatasetOptions& options);
+
+}  // namespace edgevio::io

@@ -1,0 +1,98 @@
+#include "edgevio/pipeline/run.h"
+
+#include <sys/resource.h>
+
+#include <chrono>
+
+#include "edgevio/camera/stereo_rectifier.h"
+#include "edgevio/common/error.h"
+#include "edgevio/common/time.h"
+#include "edgevio/imu/gyro_integration.h"
+#include "edgevio/io/sequence.h"
+#include "edgevio/pipeline/odometry.h"
+#include "edgevio/pipeline/run_writer.h"
+#include "edgevio/pipeline/threaded_pipeline.h"
+
+namespace edgevio::pipeline {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double peakResidentMb() {
+  rusage usage{};
+  return getrusage(RUSAGE_SELF, &usage) == 0 ? static_cast<double>(usage.ru_maxrss) / 1024.0 : 0.0;  // ru_maxrss is in KiB
+}
+
+void validate(const RunRequest& req, const Config& config) {
+  if (req.skip < 0) throw InputError("--skip must be >= 0");
+  const std::string invalid = config.validate();
+  if (!invalid.empty()) throw InputError("invalid configuration: " + invalid);
+}
+
+/// Every (skip+1)-th frame of the sequence.
+std::vector<std::size_t> framesToRun(const io::Sequence& sequence, int skip) {
+  std::vector<std::size_t> frames;
+  for (std::size_t i = 0; i < sequence.frameCount(); i += static_cast<std::size_t>(skip) + 1) frames.push_back(i);
+  return frames;
+}
+
+RunSummary startSummary(const RunRequest& req, const io::Sequence& sequence) {
+  RunSummary s;
+  s.mode = modeName(req.mode);
+  s.sequence = sequence.name();
+  s.dataset = sequence.location();
+  s.skip = req.skip;
+  s.realtime = req.realtime;
+  s.duration_s = toSeconds(sequence.frameTime(sequence.frameCount() - 1) - sequence.frameTime(0));
+  return s;
+}
+
+}  // namespace
+
+RunSummary run(const RunRequest& req, const Config& config, const RunObserver& observer) {
+  const auto wall_start = Clock::now();
+  validate(req, config);
+  const std::unique_ptr<io::Sequence> sequence = io::openSequence(req.dataset, config.dataset);
+  if (sequence->frameCount() == 0) throw InputError(req.dataset, 0, "no stereo pairs to process");
+  const camera::StereoRectifier rect(sequence->calibration(), config.rectification);
+  RunWriter writer(req.out_dir, config, req.mode.imu);
+  RunSummary s = startSummary(req, *sequence);
+
+  // Static start: gravity-aligned initial orientation and gyro bias (METHOD.md §5).
+  const std::int64_t t0 = sequence->frameTime(0);
+  const imu::StaticInit init = imu::staticInitialization(sequence->imu(), t0, config.tracking.static_init_window_s,
+                                                         config.tracking.static_accel_std_max, config.tracking.static_gyro_std_max);
+  s.static_initialization = init.is_static;
+  const tracking::EdgeTracker tracker(rect, config.vision, config.alignment, config.tracking);
+  Odometry odometry(req.mode, config, tracker, rect.T_b_rect(0), sequence->calibration().imu, sequence->imu(), init, req.realtime);
+
+  const std::vector<std::size_t> frames = framesToRun(*sequence, req.skip);
+  std::size_t done = 0;
+  const PipelineResult p = runThreaded(*sequence, frames, rect, config.vision, req.realtime, [&](PipelineFrame item) {
+    ++done;
+    if (!item.readable) return;
+    const auto t_start = Clock::now();
+    FrameRecord r = odometry.process(std::move(item.frame));
+    r.total_ms = item.load_ms + std::chrono::duration<double, std::milli>(Clock::now() - t_start).count();
+    writer.write(r);
+    const std::size_t events_before = s.events.size();
+    s.count(r, t0, config.tracking.lost_after_failures);
+    if (observer.event)
+      for (std::size_t e = events_before; e < s.events.size(); ++e) observer.event(s.events[e]);
+    if (observer.frame) observer.frame(r);
+    if (observer.progress) observer.progress(done + item.dropped_before, frames.size(), toSeconds(r.t_ns - t0));
+  });
+  if (writer.poses() == 0) throw InputError(req.dataset, 0, "no stereo pair could be read");
+
+  s.dropped_frames = p.dropped;
+  s.skipped_unreadable = sequence->unreadableImages();
+  s.warnings = sequence->warnings();
+  s.wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  s.realtime_factor = s.wall_s > 0 ? s.duration_s / s.wall_s : 0.0;
+  s.peak_rss_mb = peakResidentMb();
+  writer.finish(s);
+  return s;
+}
+
+}  // namespace edgevio::pipeline

@@ -1,0 +1,37 @@
+#pragma once
+// `edgevio run`: a sequence through the system, into a run folder
+// (pipeline/run_writer.h). The sequence source, the thread pipeline
+// (pipeline/threaded_pipeline.h), the per-frame stage code
+// (pipeline/odometry.h) and the writers, put together.
+#include <functional>
+#include <string>
+
+#include "edgevio/config/config.h"
+#include "edgevio/pipeline/frame_record.h"
+#include "edgevio/pipeline/mode.h"
+#include "edgevio/pipeline/run_summary.h"
+
+namespace edgevio::pipeline {
+
+struct RunRequest {
+  std::string dataset;
+  std::string out_dir;
+  Mode mode;              ///< default: the full system
+  int skip = 0;           ///< keep every (skip+1)-th stereo frame; the IMU is untouched
+  bool realtime = false;  ///< release frames at their timestamps; drop those the pipeline has no room for
+};
+
+/// What a caller may watch while a run goes.
+struct RunObserver {
+  /// (frames done, frames total, sequence seconds done)
+  std::function<void(std::size_t, std::size_t, double)> progress;
+  /// Each event (window restart, IMU gap, unreadable image) as it happens, "t = … s: what".
+  std::function<void(const std::string&)> event;
+  /// Each frame's record, after it was written.
+  std::function<void(const FrameRecord&)> frame;
+};
+
+/// Throws InputError for bad input; a run that loses track returns failed = true.
+RunSummary run(const RunRequest& request, const Config& config, const RunObserver& observer = {});
+
+}  // namespace edgevio::pipeline

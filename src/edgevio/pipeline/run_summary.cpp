@@ -1,0 +1,98 @@
+#include "edgevio/pipeline/run_summary.h"
+
+#include <cstdio>
+
+#include "edgevio/common/json.h"
+#include "edgevio/common/time.h"
+
+namespace edgevio::pipeline {
+
+void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns, int lost_after) {
+  ++frames;
+  keyframes += static_cast<std::size_t>(r.keyframes_made);
+  const bool failed_check = r.aligned && !r.selfCheckPassed();
+  self_check_failures += failed_check;
+  gyro_check_realignments += r.gyro_check_failed;
+  translation_check_realignments += r.translation_check_failed;
+  external_check_rejections += r.external_check == ExternalCheck::kRejected;
+  estimator_resets += r.restart != WindowRestart::kNone;
+  loop_closures += static_cast<std::size_t>(r.loop_links);
+  back_links += static_cast<std::size_t>(r.back_links);
+  for (const std::string& event : r.events) {
+    char at[64];
+    std::snprintf(at, sizeof at, "t = %.3f s: ", toSeconds(r.t_ns - t0_ns));
+    events.push_back(at + event);
+  }
+  if (failed_check) ++consecutive_failures;
+  else if (r.aligned) consecutive_failures = 0;
+  if (consecutive_failures >= lost_after && !failed) {
+    failed = true;
+    failure = "lost track: " + std::to_string(lost_after) + " consecutive self-check failures ending at t = " +
+              std::to_string(toSeconds(r.t_ns)) + " s";
+  }
+  if (!r.T_w_b.translation().allFinite() && !failed) {
+    failed = true;
+    failure = "diverged: non-finite pose";
+  }
+}
+
+const std::vector<SummaryField>& summaryFields() {
+  using S = RunSummary;
+  using J = JsonWriter;
+  static const std::vector<SummaryField> fields = {
+      {"mode", "edge-only | edge+loop | edge+imu | edge+imu+loop", [](J& j, const S& s) { j.value(s.mode); }},
+      {"sequence", "the sequence's name (its folder's)", [](J& j, const S& s) { j.value(s.sequence); }},
+      {"dataset", "where it was read from (absolute; `edgevio eval --results` finds the ground truth there)",
+       [](J& j, const S& s) { j.value(s.dataset); }},
+      {"skip", "frames skipped between processed ones (--skip)", [](J& j, const S& s) { j.value(s.skip); }},
+      {"frames", "frames processed (rows of frames.csv)", [](J& j, const S& s) { j.value(s.frames); }},
+      {"keyframes", "keyframes made", [](J& j, const S& s) { j.value(s.keyframes); }},
+      {"self_check_failures", "alignments that failed their self check", [](J& j, const S& s) { j.value(s.self_check_failures); }},
+      {"gyro_check_realignments", "alignments redone because their rotation was far from the gyroscope's",
+       [](J& j, const S& s) { j.value(s.gyro_check_realignments); }},
+      {"translation_check_realignments", "alignments redone because their translation was far from the IMU's",
+       [](J& j, const S& s) { j.value(s.translation_check_realignments); }},
+      {"external_check_rejections", "tracking links the external check refused",
+       [](J& j, const S& s) { j.value(s.external_check_rejections); }},
+      {"estimator_resets", "restarts of the window (IMU gaps, estimates that blew up)",
+       [](J& j, const S& s) { j.value(s.estimator_resets); }},
+      {"loop_closures", "loop links that entered the window", [](J& j, const S& s) { j.value(s.loop_closures); }},
+      {"back_links", "back links that entered the window", [](J& j, const S& s) { j.value(s.back_links); }},
+      {"skipped_unreadable_frames", "images that were missing or did not decode", [](J& j, const S& s) { j.value(s.skipped_unreadable); }},
+      {"realtime", "true: frames were released at their timestamps (--realtime)", [](J& j, const S& s) { j.value(s.realtime); }},
+      {"dropped_frames", "real time: frames dropped because the pipeline was behind", [](J& j, const S& s) { j.value(s.dropped_frames); }},
+      {"static_initialization", "true: the IMU was still at the start, and gave gravity and the gyroscope bias",
+       [](J& j, const S& s) { j.value(s.static_initialization); }},
+      {"failed", "true: the run lost track or diverged", [](J& j, const S& s) { j.value(s.failed); }},
+      {"failure", "why", [](J& j, const S& s) { j.value(s.failure); }},
+      {"duration_s", "the sequence's length [s]", [](J& j, const S& s) { j.value(s.duration_s); }},
+      {"wall_s", "the run's wall time [s]", [](J& j, const S& s) { j.value(s.wall_s); }},
+      {"realtime_factor", "duration_s / wall_s", [](J& j, const S& s) { j.value(s.realtime_factor); }},
+      {"peak_rss_mb", "peak resident memory of the process [MB]", [](J& j, const S& s) { j.value(s.peak_rss_mb); }},
+      {"events", "restarts, IMU gaps, unreadable images, each as \"t = … s: what\"",
+       [](J& j, const S& s) {
+         j.beginArray();
+         for (const auto& e : s.events) j.value(e);
+         j.endArray();
+       }},
+      {"warnings", "the dataset's warnings (missing images, IMU gaps, unpaired frames)",
+       [](J& j, const S& s) {
+         j.beginArray();
+         for (const auto& w : s.warnings) j.value(w);
+         j.endArray();
+       }},
+  };
+  return fields;
+}
+
+void writeSummaryJson(std::ostream& out, const RunSummary& s) {
+  JsonWriter j(out);
+  j.beginObject();
+  for (const SummaryField& f : summaryFields()) {
+    j.key(f.key);
+    f.write(j, s);
+  }
+  j.endObject();
+}
+
+}  // namespace edgevio::pipeline

@@ -1,0 +1,39 @@
+#pragma once
+// The files of a run folder, written frame by frame as the run goes (memory
+// does not grow with the sequence):
+//   trajectory_tum.txt, trajectory.csv  the causal body pose of every processed frame
+//                                       (trajectory.csv with velocity and biases in the IMU modes)
+//   frames.csv                          one FrameRecord per row (columns: frameColumns())
+//   summary.json                        the run as a whole (RunSummary)
+//   config.yaml                         the configuration that ran
+#include <fstream>
+#include <iosfwd>
+#include <string>
+
+#include "edgevio/config/config.h"
+#include "edgevio/io/trajectory_io.h"
+#include "edgevio/pipeline/frame_record.h"
+#include "edgevio/pipeline/run_summary.h"
+
+namespace edgevio::pipeline {
+
+class RunWriter {
+ public:
+  /// Creates the folder and writes config.yaml. Throws InputError when it cannot write there.
+  RunWriter(const std::string& out_dir, const Config& config, bool with_velocity_and_bias);
+  void write(const FrameRecord& record);
+  std::size_t poses() const { return tum_.count(); }
+  /// Writes summary.json.
+  void finish(const RunSummary& summary);
+
+ private:
+  std::string out_dir_;
+  std::ofstream frames_csv_;
+  io::TrajectoryWriter tum_, euroc_;
+};
+
+/// The reference of a run folder's files as Markdown (docs/outputs.md): every
+/// column of frames.csv and key of summary.json, from their tables.
+void writeOutputsReference(std::ostream& out);
+
+}  // namespace edgevio::pipeline

@@ -1,0 +1,111 @@
+#include "edgevio/pipeline/threaded_pipeline.h"
+
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <thread>
+
+#include "edgevio/pipeline/bounded_queue.h"
+
+namespace edgevio::pipeline {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+/// Frames between the driver and the pyramid thread: decoded and rectified.
+struct Loaded {
+  std::int64_t t_ns = 0;
+  bool readable = false;
+  tracking::StereoFrame frame;
+  double ms = 0.0;
+};
+
+/// Two frames of look-ahead per queue: enough to keep both cores busy, small
+/// enough that a real-time run drops rather than lags.
+constexpr std::size_t kQueueCapacity = 2;
+
+Loaded load(io::Sequence& sequence, std::size_t i, const camera::StereoRectifier& rect) {
+  const auto t0 = Clock::now();
+  Loaded item;
+  item.t_ns = sequence.frameTime(i);
+  if (std::optional<cv::Mat> left = sequence.leftImage(i)) {
+    item.readable = true;
+    item.frame.t_ns = item.t_ns;
+    item.frame.left = rect.rectify(0, *left);
+    // Decoded by the tracking thread if the frame becomes a keyframe.
+    item.frame.right = tracking::LazyImage([&rect, raw = sequence.rightImageLoader(i)] {
+      const cv::Mat image = raw();
+      return image.empty() ? cv::Mat() : rect.rectify(1, image);
+    });
+  }
+  item.ms = msSince(t0);
+  return item;
+}
+
+}  // namespace
+
+PipelineResult runThreaded(io::Sequence& sequence, const std::vector<std::size_t>& frames,
+                           const camera::StereoRectifier& rect, const vision::VisionOptions& vision, bool realtime,
+                           const std::function<void(PipelineFrame)>& consume) {
+  BoundedQueue<Loaded> loaded(kQueueCapacity);
+  BoundedQueue<PipelineFrame> prepared(kQueueCapacity);
+  std::exception_ptr driver_error, prepare_error;
+  std::atomic<std::size_t> dropped{0};
+  std::thread driver([&] {
+    try {
+      const auto start = Clock::now();
+      for (const std::size_t i : frames) {
+        if (realtime)
+          std::this_thread::sleep_until(start + std::chrono::nanoseconds(sequence.frameTime(i) - sequence.frameTime(frames.front())));
+        Loaded item = load(sequence, i, rect);
+        if (!realtime)
+          loaded.push(std::move(item));
+        else if (!loaded.tryPush(std::move(item)))
+          ++dropped;
+      }
+    } catch (...) {
+      driver_error = std::current_exception();
+    }
+    loaded.close();
+  });
+  std::thread preparer([&] {
+    try {
+      while (std::optional<Loaded> item = loaded.pop()) {
+        const auto t0 = Clock::now();
+        PipelineFrame p;
+        p.t_ns = item->t_ns;
+        p.readable = item->readable;
+        if (item->readable) p.frame = tracking::prepareFrame(item->frame, rect, vision);
+        p.load_ms = item->ms + msSince(t0);
+        p.dropped_before = dropped;
+        prepared.push(std::move(p));
+      }
+    } catch (...) {
+      prepare_error = std::current_exception();
+      loaded.close();
+    }
+    prepared.close();
+  });
+  // Whatever happens below, the threads are stopped and joined.
+  const auto stop = [&] {
+    loaded.close();
+    prepared.close();
+    if (driver.joinable()) driver.join();
+    if (preparer.joinable()) preparer.join();
+  };
+  try {
+    while (std::optional<PipelineFrame> item = prepared.pop()) consume(std::move(*item));
+  } catch (...) {
+    stop();
+    throw;
+  }
+  stop();
+  if (driver_error) std::rethrow_exception(driver_error);
+  if (prepare_error) std::rethrow_exception(prepare_error);
+  return {dropped};
+}
+
+}  // namespace edgevio::pipeline

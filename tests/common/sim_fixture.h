@@ -1,0 +1,61 @@
+#pragma once
+// Simulator inputs shared by the simulator's unit and end-to-end tests.
+#include <string>
+#include <vector>
+
+#include "edgevio/camera/calibration.h"
+#include "edgevio/io/calibration_io.h"
+#include "edgevio/sim/scene.h"
+#include "edgevio/sim/simulator.h"
+#include "edgevio/sim/trajectory_source.h"
+
+namespace edgevio::test {
+
+/// Default options with smaller textures: a quicker setup; rendering itself is unchanged.
+inline sim::SimOptions fastSimOptions() {
+  sim::SimOptions o;
+  o.scene.texture_log2_size = 8;
+  return o;
+}
+
+/// 0.6 s of the figure8 scenario from 1.5 s, seed 3.
+inline sim::SimRequest shortScenario(const std::string& out) {
+  sim::SimRequest r;
+  r.out_dir = out;
+  r.scenario = "figure8";
+  r.start_s = 1.5;
+  r.duration_s = 0.6;
+  r.seed = 3;
+  return r;
+}
+
+/// A span of a real EuRoC recording: its ground truth, its IMU log replayed.
+inline sim::SimRequest replayRequest(const std::string& euroc_dir, const std::string& out, double start_s, double duration_s) {
+  sim::SimRequest r;
+  r.out_dir = out;
+  r.trajectory_file = euroc_dir + "/groundtruth.csv";
+  r.imu = euroc_dir + "/imu0.csv";
+  r.start_s = start_s;
+  r.duration_s = duration_s;
+  return r;
+}
+
+/// The EuRoC rig in a room around 14 s of the figure8 scenario (scene seed 5).
+struct FigureEightWorld {
+  camera::StereoRig rig = io::eurocDefaultRig();
+  io::Trajectory samples = sim::scenarioSamples("figure8", 14.0, 1.0, rig.T_b_c[0]);
+  std::vector<Vec3> path;
+  sim::Scene scene;
+  FigureEightWorld() {
+    for (const auto& s : samples) path.push_back(s.T_w_b.translation());
+    sim::SceneOptions o;
+    o.texture_log2_size = 9;
+    scene = sim::buildScene(path, o, 5);
+  }
+  static const FigureEightWorld& get() {
+    static const FigureEightWorld w;
+    return w;
+  }
+};
+
+}  // namespace edgevio::test

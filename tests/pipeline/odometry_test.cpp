@@ -1,0 +1,241 @@
+// The per-frame stage code on synthetic tracks, without images: a tracker
+// that knows the true motion stands in for edge alignment, the IMU is
+// synthesised along the aggressive scenario. Checks the keyframe policy (one
+// owner: references are always keyframes in the window), the promotion of
+// the previous frame, the external check's refusals, the window's events
+// (a keyframe leaving it, an IMU gap) and the poses.
+#include "edgevio/pipeline/odometry.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <map>
+
+#include "common/imu_scenario.h"
+#include "edgevio/sim/random.h"
+
+namespace edgevio::pipeline {
+namespace {
+
+using geometry::SE3;
+using geometry::SO3;
+using tracking::KeyframeReason;
+
+constexpr std::int64_t kFrameNs = 50000000;  // 20 Hz
+
+/// Aligns by looking the motion up in the truth, with noise of σ_t, σ_r per
+/// link. Its knobs make tracking fail or vote the way real scenes do.
+class FakeTracker final : public tracking::Tracker {
+ public:
+  FakeTracker(const test::ImuScenario& sc, const SE3& T_b_c) : sc_(sc), T_b_c_(T_b_c) {}
+
+  /// A frame farther than this from its keyframe fails the self check (the view changed too much).
+  std::int64_t max_span_ns = 10 * kFrameNs;
+  /// Tracking votes for a new keyframe once the keyframe is this old (its points leave the view).
+  std::int64_t keyframe_span_ns = 6 * kFrameNs;
+  /// Frames whose link comes out this far off (a wrong minimum the self check cannot see).
+  std::map<std::int64_t, SE3> corrupted;
+  double sigma_t = 0.002, sigma_r = 0.002;
+  mutable int keyframes_made = 0;
+
+  std::shared_ptr<const tracking::KeyframeData> makeKeyframe(tracking::PreparedFrame frame) const override {
+    auto k = std::make_shared<tracking::KeyframeData>();
+    k->t_ns = frame.t_ns;
+    k->depth.points.assign(1, std::vector<Eigen::Vector3f>(2000));
+    ++keyframes_made;
+    return k;
+  }
+
+  tracking::Track track(const tracking::PreparedFrame& frame, const tracking::KeyframeData& keyframe, const SE3& T_w_b_keyframe,
+                        const tracking::Prediction&) const override {
+    tracking::Track t;
+    const std::int64_t span = frame.t_ns - keyframe.t_ns;
+    t.alignment.self_check_passed = span <= max_span_ns;
+    if (!t.passed()) return t;
+    sim::Rng rng(static_cast<std::uint64_t>(frame.t_ns * 31 + keyframe.t_ns));
+    Vec6 noise;
+    for (int k = 0; k < 6; ++k) noise[k] = rng.gaussian() * (k < 3 ? sigma_t : sigma_r);
+    SE3 T_nr = (sc_.pose(frame.t_ns) * T_b_c_).inverse() * (sc_.pose(keyframe.t_ns) * T_b_c_) * SE3::exp(noise);
+    if (const auto c = corrupted.find(frame.t_ns); c != corrupted.end()) T_nr = T_nr * c->second;
+    t.alignment.T_nr = T_nr;
+    t.alignment.covariance.setZero();
+    t.alignment.covariance.diagonal() << Vec3::Constant(sigma_t * sigma_t), Vec3::Constant(sigma_r * sigma_r);
+    t.alignment.visible_ratio = 1.0;
+    t.T_w_b = T_w_b_keyframe * T_b_c_ * T_nr.inverse() * T_b_c_.inverse();
+    if (span >= keyframe_span_ns) t.keyframe_vote = KeyframeReason::kPointsLeavingView;
+    return t;
+  }
+
+ private:
+  const test::ImuScenario& sc_;
+  SE3 T_b_c_;
+};
+
+const test::ImuScenario& scenario() {
+  static const test::ImuScenario sc("aggressive");
+  return sc;
+}
+
+/// Links carry their true covariance; the IMU its true densities.
+Config testConfig() {
+  Config c;
+  c.estimator.visual_covariance_scale = 1.0;
+  c.estimator.imu_noise_inflation = 1.0;
+  c.estimator.gyro_bias_walk_inflation = c.estimator.accel_bias_walk_inflation = 1.0;
+  c.back_links.keyframes = 0;  // back links align images
+  return c;
+}
+
+struct OdometryRun {
+  std::vector<FrameRecord> records;
+  double max_position_error_m = 0.0;
+};
+
+/// Frames every 50 ms from 1 s (still) for `frames` frames, started at the true pose.
+OdometryRun runOdometry(Mode mode, const Config& config, FakeTracker& tracker, int frames,
+                const std::vector<imu::ImuSample>* imu_override = nullptr) {
+  const test::ImuScenario& sc = scenario();
+  const std::vector<imu::ImuSample>& imu = imu_override ? *imu_override : sc.imu.samples;
+  const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL;
+  imu::StaticInit init;  // a static start at the true attitude, with the true gyro bias
+  init.is_static = true;
+  init.R_w_b = sc.pose(t0).so3();
+  init.gyro_bias = sc.imu.b_g[static_cast<std::size_t>((t0 - sc.imu.samples.front().t_ns) / 5000000)];
+  Odometry odometry(mode, config, tracker, sc.rig.T_b_c[0], sc.rig.imu, imu, init);
+  OdometryRun run;
+  const SE3 start = sc.pose(t0);
+  for (int f = 0; f < frames; ++f) {
+    tracking::PreparedFrame frame;
+    frame.t_ns = t0 + f * kFrameNs;
+    run.records.push_back(odometry.process(std::move(frame)));
+    // The estimate starts at (0, yaw 0 of the static start): compare the motion since the start.
+    const SE3 truth = SE3(init.R_w_b, Vec3::Zero()) * start.inverse() * sc.pose(frame.t_ns);
+    run.max_position_error_m =
+        std::max(run.max_position_error_m, (run.records.back().T_w_b.translation() - truth.translation()).norm());
+  }
+  return run;
+}
+
+/// Each aligned frame's reference is a keyframe made at or before it, not yet left behind by more than the window.
+void expectReferencesAreKeyframes(const OdometryRun& run) {
+  std::map<std::int64_t, bool> keyframes;
+  for (const FrameRecord& r : run.records) {
+    if (r.previous_promoted) keyframes[r.reference_t_ns] = true;
+    if (r.aligned) {
+      EXPECT_TRUE(keyframes.count(r.reference_t_ns)) << "frame " << r.t_ns << " tracked against a non-keyframe";
+    }
+    if (r.isKeyframe()) keyframes[r.t_ns] = true;
+  }
+}
+
+TEST(Odometry, FollowsTheTruthWithKeyframesAsReferences) {
+  FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);
+  const OdometryRun run = runOdometry({true, false}, testConfig(), tracker, 200);
+  std::size_t keyframes = 0, accepted = 0;
+  for (const FrameRecord& r : run.records) {
+    keyframes += static_cast<std::size_t>(r.keyframes_made);
+    accepted += r.external_check == ExternalCheck::kAccepted;
+    EXPECT_EQ(r.restart, WindowRestart::kNone);
+  }
+  std::printf("aggressive, 10 s of synthetic tracks: %zu keyframes, %zu accepted links, max position error %.4f m\n", keyframes,
+              accepted, run.max_position_error_m);
+  EXPECT_EQ(run.records.front().keyframe, KeyframeReason::kFirstFrame);
+  expectReferencesAreKeyframes(run);
+  // A new keyframe every 6 frames (the fake's vote), every link accepted.
+  EXPECT_EQ(keyframes, static_cast<std::size_t>(tracker.keyframes_made));
+  EXPECT_NEAR(static_cast<double>(keyframes), 200.0 / 6.0, 3.0);
+  EXPECT_EQ(accepted, 199u);
+  // As in VioEstimator.FollowsAggressiveMotionToTheAccuracyOfItsLinks: 33
+  // keyframe hops of 2 mm chain to ~1.2 cm per axis; 5 cm is 3σ of the norm.
+  EXPECT_LT(run.max_position_error_m, 0.05);
+}
+
+TEST(Odometry, AFailedAlignmentMakesThePreviousFrameTheKeyframe) {
+  FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);
+  tracker.keyframe_span_ns = 100 * kFrameNs;  // no votes: keyframes only when alignment fails
+  tracker.max_span_ns = 4 * kFrameNs;
+  const OdometryRun run = runOdometry({true, false}, testConfig(), tracker, 40);
+  int promoted = 0;
+  for (const FrameRecord& r : run.records) {
+    if (!r.previous_promoted) continue;
+    ++promoted;
+    // The previous frame became the keyframe and the frame aligned to it.
+    EXPECT_EQ(r.reference_t_ns, r.t_ns - kFrameNs);
+    EXPECT_TRUE(r.selfCheckPassed());
+    EXPECT_FALSE(r.isKeyframe());
+  }
+  // Frames 1-4 align to frame 0; frame 5 fails and frame 4 becomes the
+  // keyframe; then every fourth frame: 5, 9, ..., 37.
+  EXPECT_EQ(promoted, 9);
+  expectReferencesAreKeyframes(run);
+}
+
+TEST(Odometry, ARejectedLinkMakesTheFrameAKeyframe) {
+  FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);
+  const std::int64_t t_bad = scenario().spline.beginNs() + 1000000000LL + 20 * kFrameNs;
+  tracker.corrupted[t_bad] = SE3(SO3::exp(Vec3(0.0, 5.0 * kDegToRad, 0.0)), Vec3(0.1, 0.0, 0.0));
+  const OdometryRun run = runOdometry({true, false}, testConfig(), tracker, 40);
+  for (const FrameRecord& r : run.records) {
+    if (r.t_ns != t_bad) continue;
+    EXPECT_EQ(r.external_check, ExternalCheck::kRejected);
+    EXPECT_NEAR(r.external.rotation_deg, 5.0, 0.5);
+    EXPECT_EQ(r.keyframe, KeyframeReason::kLinkRejected);
+  }
+  expectReferencesAreKeyframes(run);
+  EXPECT_LT(run.max_position_error_m, 0.02);  // the wrong link never entered the window
+}
+
+TEST(Odometry, AKeyframeLeavingTheWindowIsReplacedByTheNewestFrame) {
+  FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);
+  tracker.keyframe_span_ns = tracker.max_span_ns = 100 * kFrameNs;  // one keyframe as long as it stays in the window
+  Config config = testConfig();
+  config.estimator.window_size = 8;
+  const OdometryRun run = runOdometry({true, false}, config, tracker, 60);
+  int replaced = 0;
+  for (const FrameRecord& r : run.records) {
+    replaced += r.keyframe == KeyframeReason::kKeyframeLeftWindow;
+    EXPECT_NE(r.external_check, ExternalCheck::kNoReference) << "frame " << r.t_ns << ": its keyframe had left the window";
+  }
+  EXPECT_GE(replaced, 1);
+  expectReferencesAreKeyframes(run);
+}
+
+TEST(Odometry, AnImuGapRestartsTheWindowWhereTheImuIsMissing) {
+  // 0.3 s without IMU readings, from 0.5 s after the first frame.
+  const test::ImuScenario& sc = scenario();
+  const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL, gap_begin = t0 + 500000000, gap_end = gap_begin + 300000000;
+  std::vector<imu::ImuSample> gappy;
+  for (const imu::ImuSample& s : sc.imu.samples)
+    if (s.t_ns <= gap_begin || s.t_ns >= gap_end) gappy.push_back(s);
+  FakeTracker tracker(sc, sc.rig.T_b_c[0]);
+  const OdometryRun run = runOdometry({true, false}, testConfig(), tracker, 40, &gappy);
+  int restarts = 0;
+  for (const FrameRecord& r : run.records) {
+    if (r.restart == WindowRestart::kNone) continue;
+    ++restarts;
+    EXPECT_EQ(r.restart, WindowRestart::kImuGap);
+    // Only a frame whose interval from its predecessor lacks readings (or
+    // starts at the gap's last reading) restarts the window.
+    EXPECT_GT(r.t_ns, gap_begin);
+    EXPECT_LE(r.t_ns - kFrameNs, gap_end) << "restart after the IMU came back";
+    EXPECT_TRUE(r.isKeyframe()) << "the window restarted at a frame that is not its keyframe";
+  }
+  // The gap spans 6 frame intervals, and the interval after it starts at the gap's last reading.
+  EXPECT_GE(restarts, 1);
+  EXPECT_LE(restarts, 7);
+  expectReferencesAreKeyframes(run);
+  EXPECT_LT(run.max_position_error_m, 0.05);
+}
+
+TEST(Odometry, EdgeOnlyChainsTheLinks) {
+  FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);
+  tracker.sigma_t = tracker.sigma_r = 0.0;
+  const OdometryRun run = runOdometry({false, false}, testConfig(), tracker, 60);
+  // Exact links, composed: the pose is the truth to rounding.
+  EXPECT_LT(run.max_position_error_m, 1e-9);
+  expectReferencesAreKeyframes(run);
+  for (const FrameRecord& r : run.records) EXPECT_FALSE(r.state.has_value());
+}
+
+}  // namespace
+}  // namespace edgevio::pipeline
