@@ -67,9 +67,8 @@ Order reverseCuthillMcKee(const std::vector<std::vector<long>>& adjacency) {
   return order;
 }
 
-}  // namespace
-
-bool solveEnvelopeCholesky(const Eigen::MatrixXd& H, double lambda, const Eigen::VectorXd& rhs, Eigen::VectorXd* x) {
+/// Block (i, j) is nonzero: the blocks are coupled.
+std::vector<std::vector<long>> blockAdjacency(const Eigen::MatrixXd& H) {
   const long nb = H.rows() / B;
   std::vector<std::vector<long>> adjacency(static_cast<std::size_t>(nb));
   for (long i = 0; i < nb; ++i)
@@ -78,64 +77,102 @@ bool solveEnvelopeCholesky(const Eigen::MatrixXd& H, double lambda, const Eigen:
         adjacency[static_cast<std::size_t>(i)].push_back(j);
         adjacency[static_cast<std::size_t>(j)].push_back(i);
       }
-  // The cheapest of three orderings: time order, its reverse, and RCM.
+  return adjacency;
+}
+
+/// The cheapest of three orderings: time order, its reverse, and RCM; `first` its envelope.
+Order cheapestOrder(const std::vector<std::vector<long>>& adjacency, std::vector<long>* first) {
+  const long nb = static_cast<long>(adjacency.size());
   Order order(static_cast<std::size_t>(nb));
   for (long k = 0; k < nb; ++k) order[static_cast<std::size_t>(k)] = k;
-  std::vector<long> first = envelope(adjacency, order);
+  *first = envelope(adjacency, order);
   for (Order candidate : {Order(order.rbegin(), order.rend()), reverseCuthillMcKee(adjacency)}) {
     std::vector<long> f = envelope(adjacency, candidate);
-    if (envelopeCost(f) < envelopeCost(first)) {
+    if (envelopeCost(f) < envelopeCost(*first)) {
       order = std::move(candidate);
-      first = std::move(f);
+      *first = std::move(f);
     }
   }
-  const auto Hb = [&](long k, long l) {
-    return H.block<B, B>(B * order[static_cast<std::size_t>(k)], B * order[static_cast<std::size_t>(l)]);
-  };
-  // L row by row (positions k in `order`): row i is one 15 x 15·(i − first[i] + 1)
-  // matrix holding blocks first[i] .. i side by side, so that Σ_k L_ik L_jkᵀ
-  // is a single product with a long inner dimension (small 15x15 products
-  // spend their time packing).
-  std::vector<Eigen::Matrix<double, B, Eigen::Dynamic>> L(static_cast<std::size_t>(nb));
-  const auto row = [&](long i, long from, long count) {
-    return L[static_cast<std::size_t>(i)].middleCols(B * (from - first[static_cast<std::size_t>(i)]), B * count);
-  };
-  const auto Lb = [&](long i, long j) { return L[static_cast<std::size_t>(i)].middleCols<B>(B * (j - first[static_cast<std::size_t>(i)])); };
-  for (long i = 0; i < nb; ++i) {
-    const long fi = first[static_cast<std::size_t>(i)];
-    L[static_cast<std::size_t>(i)].resize(B, B * (i - fi + 1));
-    for (long j = fi; j <= i; ++j) {
-      Block S = Hb(i, j);
-      const long k0 = std::max(fi, first[static_cast<std::size_t>(j)]);
-      if (k0 < j) S.noalias() -= row(i, k0, j - k0) * row(j, k0, j - k0).transpose();
-      if (j < i) {
-        // L_ij L_jjᵀ = S
-        Lb(i, j) = Lb(j, j).triangularView<Eigen::Lower>().solve(S.transpose()).transpose();
-      } else {
-        S.diagonal().array() += lambda;
-        const Eigen::LLT<Block> llt(S);
-        if (llt.info() != Eigen::Success) return false;
-        Lb(i, i) = llt.matrixL();
+  return order;
+}
+
+/// The Cholesky factor L of H + λI inside the envelope of a block order. L
+/// is kept row by row (positions k in `order`): row i is one 15 x
+/// 15·(i − first[i] + 1) matrix holding blocks first[i] .. i side by side, so
+/// that Σ_k L_ik L_jkᵀ is a single product with a long inner dimension (small
+/// 15x15 products spend their time packing).
+class EnvelopeFactor {
+ public:
+  EnvelopeFactor(Order order, std::vector<long> first)
+      : order_(std::move(order)), first_(std::move(first)), L_(order_.size()) {}
+
+ private:
+  long firstOf(long i) const { return first_[static_cast<std::size_t>(i)]; }
+  auto row(long i, long from, long count) { return L_[static_cast<std::size_t>(i)].middleCols(B * (from - firstOf(i)), B * count); }
+  auto Lb(long i, long j) { return L_[static_cast<std::size_t>(i)].middleCols<B>(B * (j - firstOf(i))); }
+
+ public:
+
+  /// False when H + λI is not positive definite.
+  bool factorize(const Eigen::MatrixXd& H, double lambda) {
+    const long nb = static_cast<long>(order_.size());
+    for (long i = 0; i < nb; ++i) {
+      const long fi = firstOf(i);
+      L_[static_cast<std::size_t>(i)].resize(B, B * (i - fi + 1));
+      for (long j = fi; j <= i; ++j) {
+        Block S = H.block<B, B>(B * order_[static_cast<std::size_t>(i)], B * order_[static_cast<std::size_t>(j)]);
+        const long k0 = std::max(fi, firstOf(j));
+        if (k0 < j) S.noalias() -= row(i, k0, j - k0) * row(j, k0, j - k0).transpose();
+        if (j < i) {
+          // L_ij L_jjᵀ = S
+          Lb(i, j) = Lb(j, j).triangularView<Eigen::Lower>().solve(S.transpose()).transpose();
+        } else {
+          S.diagonal().array() += lambda;
+          const Eigen::LLT<Block> llt(S);
+          if (llt.info() != Eigen::Success) return false;
+          Lb(i, i) = llt.matrixL();
+        }
       }
     }
+    return true;
   }
-  // L y = P rhs, then Lᵀ z = y (column-oriented, inside the envelope), x = Pᵀ z.
-  Eigen::VectorXd y(rhs.size());
-  for (long k = 0; k < nb; ++k) y.segment<B>(B * k) = rhs.segment<B>(B * order[static_cast<std::size_t>(k)]);
-  for (long i = 0; i < nb; ++i) {
-    const long fi = first[static_cast<std::size_t>(i)];
-    BlockVec yi = y.segment<B>(B * i);
-    if (fi < i) yi.noalias() -= row(i, fi, i - fi) * y.segment(B * fi, B * (i - fi));
-    y.segment<B>(B * i) = Lb(i, i).triangularView<Eigen::Lower>().solve(yi);
+
+  /// L y = P rhs, then Lᵀ z = y (column-oriented, inside the envelope), x = Pᵀ z.
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) {
+    const long nb = static_cast<long>(order_.size());
+    Eigen::VectorXd y(rhs.size());
+    for (long k = 0; k < nb; ++k) y.segment<B>(B * k) = rhs.segment<B>(B * order_[static_cast<std::size_t>(k)]);
+    for (long i = 0; i < nb; ++i) {
+      const long fi = firstOf(i);
+      BlockVec yi = y.segment<B>(B * i);
+      if (fi < i) yi.noalias() -= row(i, fi, i - fi) * y.segment(B * fi, B * (i - fi));
+      y.segment<B>(B * i) = Lb(i, i).triangularView<Eigen::Lower>().solve(yi);
+    }
+    for (long i = nb - 1; i >= 0; --i) {
+      const BlockVec xi = Lb(i, i).transpose().triangularView<Eigen::Upper>().solve(BlockVec(y.segment<B>(B * i)));
+      y.segment<B>(B * i) = xi;
+      const long fi = firstOf(i);
+      if (fi < i) y.segment(B * fi, B * (i - fi)).noalias() -= row(i, fi, i - fi).transpose() * xi;
+    }
+    Eigen::VectorXd x(rhs.size());
+    for (long k = 0; k < nb; ++k) x.segment<B>(B * order_[static_cast<std::size_t>(k)]) = y.segment<B>(B * k);
+    return x;
   }
-  for (long i = nb - 1; i >= 0; --i) {
-    const BlockVec xi = Lb(i, i).transpose().triangularView<Eigen::Upper>().solve(BlockVec(y.segment<B>(B * i)));
-    y.segment<B>(B * i) = xi;
-    const long fi = first[static_cast<std::size_t>(i)];
-    if (fi < i) y.segment(B * fi, B * (i - fi)).noalias() -= row(i, fi, i - fi).transpose() * xi;
-  }
-  x->resize(rhs.size());
-  for (long k = 0; k < nb; ++k) x->segment<B>(B * order[static_cast<std::size_t>(k)]) = y.segment<B>(B * k);
+
+ private:
+  Order order_;
+  std::vector<long> first_;
+  std::vector<Eigen::Matrix<double, B, Eigen::Dynamic>> L_;
+};
+
+}  // namespace
+
+bool solveEnvelopeCholesky(const Eigen::MatrixXd& H, double lambda, const Eigen::VectorXd& rhs, Eigen::VectorXd* x) {
+  std::vector<long> first;
+  Order order = cheapestOrder(blockAdjacency(H), &first);
+  EnvelopeFactor factor(std::move(order), std::move(first));
+  if (!factor.factorize(H, lambda)) return false;
+  *x = factor.solve(rhs);
   return x->allFinite();
 }
 

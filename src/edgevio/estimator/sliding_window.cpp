@@ -262,25 +262,32 @@ SolveSummary solve(Window* w, const EstimatorOptions& o) {
   return s;
 }
 
-void marginalize(Window* w, std::size_t k, const EstimatorOptions& o) {
-  // The states that share a link with k, and those of the old prior.
+namespace {
+
+/// State k first, then every state that shares a link with it, then those of the old prior.
+std::vector<std::size_t> statesInvolvedWith(const Window& w, std::size_t k) {
   std::vector<std::size_t> involved = {k};
   const auto addState = [&](std::size_t i) {
     if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
   };
-  for (const auto& l : w->inertial)
+  for (const auto& l : w.inertial)
     if (l.i == k || l.j == k) addState(l.i == k ? l.j : l.i);
-  for (const auto& l : w->visual)
+  for (const auto& l : w.visual)
     if (l.r == k || l.n == k) addState(l.r == k ? l.n : l.r);
-  for (std::size_t i : w->prior.states) addState(i);
+  for (std::size_t i : w.prior.states) addState(i);
+  return involved;
+}
+
+/// The prior left by marginalising involved[0]: the Schur complement of the
+/// normal equations of its links and the old prior (eqs 20-21).
+MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involved, const EstimatorOptions& o) {
+  const std::size_t k = involved.front();
   std::map<std::size_t, long> slot;
   for (std::size_t a = 0; a < involved.size(); ++a) slot[involved[a]] = static_cast<long>(a);
-
   Normal n(involved.size());
-  linearize(*w, o, slot, true, [&](const InertialLink& l) { return l.i == k || l.j == k; },
+  linearize(w, o, slot, true, [&](const InertialLink& l) { return l.i == k || l.j == k; },
             [&](const VisualLink& l) { return l.r == k || l.n == k; }, &n);
-
-  // Schur complement on the first 15 rows/columns (state k), eqs 20-21.
+  // Schur complement on the first 15 rows/columns (state k).
   const long m = 15, r = n.H.rows() - m;
   const MatrixXd Hmm = n.H.topLeftCorner(m, m), Hrm = n.H.bottomLeftCorner(r, m), Hrr = n.H.bottomRightCorner(r, r);
   const Eigen::LDLT<MatrixXd> Hmm_ldlt(Hmm + MatrixXd::Identity(m, m) * kMarginalRegulariser);
@@ -290,21 +297,27 @@ void marginalize(Window* w, std::size_t k, const EstimatorOptions& o) {
   prior.b = n.g.tail(r) - Hrm * Hmm_ldlt.solve(n.g.head(m));
   for (std::size_t a = 1; a < involved.size(); ++a) {
     prior.states.push_back(involved[a]);
-    prior.x0.push_back(w->states[involved[a]].x);
+    prior.x0.push_back(w.states[involved[a]].x);
   }
   if (o.first_estimate_jacobians) {
     // States already in the old prior keep their first estimate; b is moved
     // there, so that the quadratic keeps its gradient at the current estimate.
     VectorXd d = VectorXd::Zero(r);
-    for (std::size_t q = 0; q < w->prior.states.size(); ++q) {
-      const auto a = std::find(involved.begin(), involved.end(), w->prior.states[q]) - involved.begin();
+    for (std::size_t q = 0; q < w.prior.states.size(); ++q) {
+      const auto a = std::find(involved.begin(), involved.end(), w.prior.states[q]) - involved.begin();
       if (a == 0) continue;  // the state leaving
-      prior.x0[static_cast<std::size_t>(a - 1)] = w->prior.x0[q];
-      d.segment<15>(15 * (a - 1)) = boxminus(w->states[w->prior.states[q]].x, w->prior.x0[q]);
+      prior.x0[static_cast<std::size_t>(a - 1)] = w.prior.x0[q];
+      d.segment<15>(15 * (a - 1)) = boxminus(w.states[w.prior.states[q]].x, w.prior.x0[q]);
     }
     prior.b -= prior.H * d;
   }
+  return prior;
+}
 
+}  // namespace
+
+void marginalize(Window* w, std::size_t k, const EstimatorOptions& o) {
+  MarginalPrior prior = schurPrior(*w, statesInvolvedWith(*w, k), o);
   // Remove state k and every link that touched it; renumber.
   const auto renumber = [k](std::size_t i) { return i > k ? i - 1 : i; };
   std::vector<InertialLink> inertial;

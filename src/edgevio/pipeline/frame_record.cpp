@@ -16,10 +16,15 @@ Cell text(const char* v) { return {Cell::Kind::kText, 0, 0.0, v}; }
 Cell linkT(const R& r, int i) { return real(r.link_T_bn_br.translation()[i]); }
 Cell linkQ(const R& r, int i) { return real(r.link_T_bn_br.quaternion().coeffs()[i]); }  // coeffs(): x, y, z, w
 
-}  // namespace
+Cell predictionCheck(const R& r) {
+  using tracking::PredictionCheck;
+  const PredictionCheck c = r.gyro_check_failed           ? PredictionCheck::kGyro
+                            : r.translation_check_failed ? PredictionCheck::kTranslation
+                                                         : PredictionCheck::kNone;
+  return text(options::nameOf(tracking::kPredictionCheckChoices, c));
+}
 
-const std::vector<FrameColumn>& frameColumns() {
-  static const std::vector<FrameColumn> columns = {
+constexpr FrameColumn kColumns[] = {
       {"timestamp_ns", "ns", "the frame's time (its left image's)", [](const R& r) { return integer(r.t_ns); }},
       {"keyframe", "-", "1: the frame became a keyframe", [](const R& r) { return integer(r.isKeyframe()); }},
       {"keyframe_reason", "-", "why it became a keyframe (see below), or -",
@@ -48,13 +53,7 @@ const std::vector<FrameColumn>& frameColumns() {
       {"link_qz", "-", "... z", [](const R& r) { return linkQ(r, 2); }, 9},
       {"link_qw", "-", "... w", [](const R& r) { return linkQ(r, 3); }, 9},
       {"prediction_check", "-", "which check against the prediction re-aligned the frame (see below), or -",
-       [](const R& r) {
-         using tracking::PredictionCheck;
-         const PredictionCheck c = r.gyro_check_failed           ? PredictionCheck::kGyro
-                                   : r.translation_check_failed ? PredictionCheck::kTranslation
-                                                                : PredictionCheck::kNone;
-         return text(options::nameOf(tracking::kPredictionCheckChoices, c));
-       }},
+       predictionCheck},
       {"external_check", "-", "what the IMU-aided external check did with the link (see below)",
        [](const R& r) { return text(options::nameOf(kExternalCheckChoices, r.external_check)); }},
       {"external_rotation_deg", "deg", "the link's rotation against the IMU's prediction",
@@ -94,7 +93,12 @@ const std::vector<FrameColumn>& frameColumns() {
        false, {"loop closure", "keyframe", true}},
       {"total_ms", "ms", "the whole frame: decoding, rectification, pyramid, tracking, estimation",
        [](const R& r) { return real(r.total_ms); }, 3, false, {"total (incl. PNG decode, rectification)", "frame"}},
-  };
+};
+
+}  // namespace
+
+const std::vector<FrameColumn>& frameColumns() {
+  static const std::vector<FrameColumn> columns(std::begin(kColumns), std::end(kColumns));
   return columns;
 }
 

@@ -13,6 +13,15 @@ using geometry::SE3;
 
 namespace {
 
+// A point this close to the camera plane (or behind it) does not project.
+constexpr double kMinDepthM = 1e-6;
+// A mean distance this much lower than the best so far counts as progress:
+// far below the sub-pixel spread of edge positions (~0.05 px), far above rounding.
+constexpr double kMinProgressPx = 1e-4;
+// The covariance of a fit that leaves the pose free along some direction:
+// 1e6 m² (rad²) fails the self check's σ test and weighs nothing in a window.
+constexpr double kUnconstrainedVariance = 1e6;
+
 /// T as a rotation matrix and translation, converted once per pass over the
 /// points instead of once per point.
 struct PoseRt {
@@ -23,7 +32,7 @@ struct PoseRt {
 
 bool project(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, Vec2* uv, Jacobian26* J) {
   const Vec3 Pc = T.R * P + T.t;
-  if (Pc.z() <= 1e-6) return false;
+  if (Pc.z() <= kMinDepthM) return false;
   const double iz = 1.0 / Pc.z();
   const double x = Pc.x() * iz, y = Pc.y() * iz;
   *uv = Vec2(c.fx * x + c.cx, c.fy * y + c.cy);
@@ -143,6 +152,82 @@ LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const std::vec
   return s;
 }
 
+/// One level of the pyramid as an alignment sees it.
+struct LevelInput {
+  const std::vector<Eigen::Vector3f>& points;
+  const std::vector<Eigen::Vector2f>* normals;
+  const vision::EdgeLevel& level;
+  int l;
+};
+
+/// Gauss-Newton on one level from T (eqs 9-11), with the rotation prior;
+/// returns the best iterate by mean distance.
+SE3 alignLevel(const LevelInput& in, SE3 T, const AlignmentOptions& o, const RotationPrior* prior, int* iterations) {
+  const bool laplacian = o.weight == RobustWeight::kLaplacian;
+  SE3 best = T;
+  double best_mean = std::numeric_limits<double>::infinity();
+  int stalled = 0;
+  for (int it = 0; it < o.max_iterations_per_level; ++it) {
+    const LevelStats s = accumulate(in.points, in.normals, T, in.level, o, laplacian, in.l == 0);
+    if (s.visible < o.min_points) break;
+    const double mean = s.sum_r / s.visible;
+    // Near the optimum points switch between neighbouring edges, so steps
+    // need not shrink; progress is judged on the mean distance instead.
+    if (mean < best_mean - kMinProgressPx) {
+      best_mean = mean;
+      best = T;
+      stalled = 0;
+    } else if (++stalled >= o.max_stalled_iterations) {
+      break;
+    }
+    ++*iterations;
+    Mat6 H = s.H;
+    Vec6 g = s.g;
+    if (prior && prior->sigma_rad > 0) {
+      // r = Log(R_nrᵀ R), ∂r/∂δθ ≈ I for the right perturbation R·Exp(δθ).
+      const double lambda = std::ldexp(1.0, -2 * in.l) / (prior->sigma_rad * prior->sigma_rad);
+      H.bottomRightCorner<3, 3>() += lambda * Mat3::Identity();
+      g.tail<3>() += lambda * (prior->R_nr.inverse() * T.so3()).log();
+    }
+    const Eigen::LDLT<Mat6> ldlt(H);
+    if (ldlt.info() != Eigen::Success) break;
+    const Vec6 xi = ldlt.solve(-g);
+    if (!xi.allFinite()) break;
+    T = T * SE3::exp(xi);
+    if (xi.norm() < o.min_step) break;
+  }
+  // The last step is evaluated too: it may be the best iterate.
+  const LevelStats last = accumulate(in.points, in.normals, T, in.level, o, laplacian, in.l == 0);
+  return last.visible < o.min_points || last.sum_r / last.visible > best_mean ? best : T;
+}
+
+/// The self check and the covariance (paper §5.3, §6.3) of T at level `finest`.
+void evaluateFit(const LevelInput& in, const SE3& T, const AlignmentOptions& o, AlignmentResult* res) {
+  const int finest = in.l;
+  const LevelStats s = accumulate(in.points, in.normals, T, in.level, o, o.weight == RobustWeight::kLaplacian, finest == 0);
+  res->points_used = s.visible;
+  res->visible_ratio = s.considered == 0 ? 0.0 : static_cast<double>(s.visible) / static_cast<double>(s.considered);
+  res->mean_distance_px = s.visible > 0 ? s.sum_r / s.visible : std::numeric_limits<double>::infinity();
+  const Eigen::LDLT<Mat6> ldlt(s.H);
+  // A singular H leaves the pose free along some direction (a blank or
+  // one-edge view): such a result cannot pass, however close to the edges.
+  const bool constrained = s.visible >= o.min_points && ldlt.info() == Eigen::Success && ldlt.isPositive();
+  res->covariance = constrained ? Mat6(ldlt.solve(Mat6::Identity())) : Mat6(Mat6::Identity() * kUnconstrainedVariance);
+  // σ along the weakest direction: points that collapsed onto one spot of an
+  // edge lie close to it (small mean distance) yet fix nothing but a ray.
+  res->translation_sigma_m =
+      res->covariance.allFinite()
+          ? std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Mat3>(res->covariance.topLeftCorner<3, 3>(), Eigen::EigenvaluesOnly)
+                                        .eigenvalues()
+                                        .maxCoeff()))
+          : std::numeric_limits<double>::infinity();
+  // On a coarser level one residual pixel is 2^finest level-0 pixels.
+  res->self_check_passed = constrained && res->covariance.allFinite() &&
+                           res->mean_distance_px <= std::ldexp(o.self_check_max_mean_distance_px, -finest) &&
+                           res->visible_ratio >= o.self_check_min_visible_ratio &&
+                           res->translation_sigma_m <= std::ldexp(o.self_check_max_translation_sigma_m, finest);
+}
+
 }  // namespace
 
 AlignmentResult alignEdges(const vision::KeyframeDepth& reference, const vision::EdgePyramid& cur,
@@ -150,79 +235,18 @@ AlignmentResult alignEdges(const vision::KeyframeDepth& reference, const vision:
                            const RotationPrior* prior) {
   const auto t0 = std::chrono::steady_clock::now();
   AlignmentResult res;
-  const bool laplacian = o.weight == RobustWeight::kLaplacian;
   const auto& ref = reference.points;
-  const auto normalsOf = [&](std::size_t l) { return l < reference.normals.size() ? &reference.normals[l] : nullptr; };
+  const auto input = [&](int l) {
+    const auto k = static_cast<std::size_t>(l);
+    return LevelInput{ref[k], k < reference.normals.size() ? &reference.normals[k] : nullptr, cur.levels[k], l};
+  };
   SE3 T = T_init;
   int levels = static_cast<int>(std::min(ref.size(), cur.levels.size()));
   if (coarsest >= 0) levels = std::min(levels, coarsest + 1);
   finest = std::clamp(finest, 0, std::max(0, levels - 1));
-  for (int l = levels - 1; l >= finest; --l) {
-    const auto& points = ref[static_cast<std::size_t>(l)];
-    const vision::EdgeLevel& level = cur.levels[static_cast<std::size_t>(l)];
-    if (static_cast<int>(points.size()) < o.min_points) continue;
-    SE3 best = T;
-    double best_mean = std::numeric_limits<double>::infinity();
-    int stalled = 0;
-    for (int it = 0; it < o.max_iterations_per_level; ++it) {
-      const LevelStats s = accumulate(points, normalsOf(static_cast<std::size_t>(l)), T, level, o, laplacian, l == 0);
-      if (s.visible < o.min_points) break;
-      const double mean = s.sum_r / s.visible;
-      // Near the optimum points switch between neighbouring edges, so steps
-      // need not shrink; progress is judged on the mean distance instead.
-      if (mean < best_mean - 1e-4) {
-        best_mean = mean;
-        best = T;
-        stalled = 0;
-      } else if (++stalled >= o.max_stalled_iterations) {
-        break;
-      }
-      ++res.iterations;
-      Mat6 H = s.H;
-      Vec6 g = s.g;
-      if (prior && prior->sigma_rad > 0) {
-        // r = Log(R_nrᵀ R), ∂r/∂δθ ≈ I for the right perturbation R·Exp(δθ).
-        const double lambda = std::ldexp(1.0, -2 * l) / (prior->sigma_rad * prior->sigma_rad);
-        H.bottomRightCorner<3, 3>() += lambda * Mat3::Identity();
-        g.tail<3>() += lambda * (prior->R_nr.inverse() * T.so3()).log();
-      }
-      const Eigen::LDLT<Mat6> ldlt(H);
-      if (ldlt.info() != Eigen::Success) break;
-      const Vec6 xi = ldlt.solve(-g);
-      if (!xi.allFinite()) break;
-      T = T * SE3::exp(xi);
-      if (xi.norm() < o.min_step) break;
-    }
-    // The last step is evaluated too: it may be the best iterate.
-    const LevelStats last = accumulate(points, normalsOf(static_cast<std::size_t>(l)), T, level, o, laplacian, l == 0);
-    if (last.visible < o.min_points || last.sum_r / last.visible > best_mean) T = best;
-  }
-
-  // Final figures at the finest level: self check, covariance.
-  if (static_cast<int>(ref.size()) > finest && static_cast<int>(cur.levels.size()) > finest) {
-    const auto f = static_cast<std::size_t>(finest);
-    const LevelStats s = accumulate(ref[f], normalsOf(f), T, cur.levels[f], o, laplacian, finest == 0);
-    res.points_used = s.visible;
-    res.visible_ratio = s.considered == 0 ? 0.0 : static_cast<double>(s.visible) / static_cast<double>(s.considered);
-    res.mean_distance_px = s.visible > 0 ? s.sum_r / s.visible : std::numeric_limits<double>::infinity();
-    const Eigen::LDLT<Mat6> ldlt(s.H);
-    // A singular H leaves the pose free along some direction (a blank or
-    // one-edge view): such a result cannot pass, however close to the edges.
-    const bool constrained = s.visible >= o.min_points && ldlt.info() == Eigen::Success && ldlt.isPositive();
-    res.covariance = constrained ? Mat6(ldlt.solve(Mat6::Identity())) : Mat6(Mat6::Identity() * 1e6);
-    // σ along the weakest direction: points that collapsed onto one spot of an
-    // edge lie close to it (small mean distance) yet fix nothing but a ray.
-    res.translation_sigma_m =
-        res.covariance.allFinite()
-            ? std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Mat3>(res.covariance.topLeftCorner<3, 3>(),
-                                                                          Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()))
-            : std::numeric_limits<double>::infinity();
-    // On a coarser level one residual pixel is 2^finest level-0 pixels.
-    res.self_check_passed = constrained && res.covariance.allFinite() &&
-                            res.mean_distance_px <= std::ldexp(o.self_check_max_mean_distance_px, -finest) &&
-                            res.visible_ratio >= o.self_check_min_visible_ratio &&
-                            res.translation_sigma_m <= std::ldexp(o.self_check_max_translation_sigma_m, finest);
-  }
+  for (int l = levels - 1; l >= finest; --l)
+    if (static_cast<int>(ref[static_cast<std::size_t>(l)].size()) >= o.min_points) T = alignLevel(input(l), T, o, prior, &res.iterations);
+  if (static_cast<int>(ref.size()) > finest && static_cast<int>(cur.levels.size()) > finest) evaluateFit(input(finest), T, o, &res);
   res.T_nr = T;
   res.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return res;
