@@ -5,33 +5,13 @@ namespace edgevio::estimator {
 
 /// The sliding-window estimator (config section `estimator`; METHOD.md §4, §5).
 struct EstimatorOptions {
-  int window_size;
-  int max_iterations;
-  double huber_translation_m;
-  double huber_rotation_deg;
-  double damping;
-  double external_check_rotation_deg;
-  double external_check_translation_m;
-  double loop_check_rotation_deg;
-  double loop_check_translation_m;
-  double front_translation_m;
-  double front_rotation_deg;
-  double visual_covariance_scale;
-  double imu_noise_inflation;
-  double gyro_bias_walk_inflation;
-  double accel_bias_walk_inflation;
-  double max_imu_gap_s;
-  double repropagate_accel_bias;
-  double repropagate_gyro_bias;
-  double init_tilt_sigma_deg;
-  double init_velocity_sigma;
-  double init_accel_bias_sigma;
-  double init_gyro_bias_sigma;
-  double reset_accel_bias;
-  double reset_gyro_bias;
-  double reset_velocity;
-  bool gauge_prior;
-  bool first_estimate_jacobians;
+  int window_size, max_iterations;
+  double huber_translation_m, huber_rotation_deg, damping, external_check_rotation_deg, external_check_translation_m,
+      loop_check_rotation_deg, loop_check_translation_m, front_translation_m, front_rotation_deg,
+      visual_covariance_scale, imu_noise_inflation, gyro_bias_walk_inflation, accel_bias_walk_inflation, max_imu_gap_s,
+      repropagate_accel_bias, repropagate_gyro_bias, init_tilt_sigma_deg, init_velocity_sigma, init_accel_bias_sigma,
+      init_gyro_bias_sigma, reset_accel_bias, reset_gyro_bias, reset_velocity;
+  bool gauge_prior, first_estimate_jacobians;
 
   EstimatorOptions() { options::setDefaults(*this); }
   static const options::Table<EstimatorOptions>& table();

@@ -10,9 +10,7 @@ namespace edgevio::eval {
 struct EvalOptions {
   double association_tolerance_s;
   AlignmentKind alignment;
-  std::vector<double> rpe_deltas_m;
-  std::vector<double> are_segments_percent;
-  std::vector<double> are_segments_m;
+  std::vector<double> rpe_deltas_m, are_segments_percent, are_segments_m;
 
   EvalOptions() { options::setDefaults(*this); }
   static const options::Table<EvalOptions>& table();

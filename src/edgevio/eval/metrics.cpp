@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/time.h"
 
 namespace edgevio::eval {
 
@@ -18,7 +19,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 std::string spanText(const io::Trajectory& t) {
   std::ostringstream o;
   o.precision(3);
-  o << std::fixed << "[" << static_cast<double>(t.front().t_ns) * 1e-9 << ", " << static_cast<double>(t.back().t_ns) * 1e-9
+  o << std::fixed << "[" << toSeconds(t.front().t_ns) << ", " << toSeconds(t.back().t_ns)
     << "] s";
   return o.str();
 }
@@ -98,7 +99,7 @@ EvalResult evaluate(const io::Trajectory& gt, const io::Trajectory& est, const E
   EvalResult r;
   r.alignment = options.alignment;
   if (gt.empty() || est.empty()) throw InputError("empty trajectory");
-  const auto tol = static_cast<std::int64_t>(std::llround(options.association_tolerance_s * 1e9));
+  const auto tol = toNanoseconds(options.association_tolerance_s);
   const Association a = associate(gt, est, tol);
   if (a.size() == 0)
     throw InputError("no timestamp overlap: ground truth spans " + spanText(gt) + ", estimate spans " + spanText(est) +
@@ -138,7 +139,7 @@ EvalResult evaluate(const io::Trajectory& gt, const io::Trajectory& est, const E
   for (double d : options.rpe_deltas_m) r.rpe.push_back(relativePoseError(a.gt, est_aligned, d));
 
   r.length_m = pathLength(a.gt);
-  r.duration_s = static_cast<double>(a.t_ns.back() - a.t_ns.front()) * 1e-9;
+  r.duration_s = toSeconds(a.t_ns.back() - a.t_ns.front());
   if (!options.are_segments_m.empty()) {
     r.are_lengths_m = options.are_segments_m;
   } else {

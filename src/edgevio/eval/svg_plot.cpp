@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/time.h"
 
 namespace edgevio::eval {
 
@@ -141,7 +142,7 @@ std::string svgPlot(const EvalResult& r, const std::string& title) {
 
   // ATE over time.
   std::vector<double> t;
-  for (std::int64_t ns : r.t_ns) t.push_back(static_cast<double>(ns - r.t_ns.front()) * 1e-9);
+  for (std::int64_t ns : r.t_ns) t.push_back(toSeconds(ns - r.t_ns.front()));
   const double tmax = t.empty() ? 1.0 : std::max(t.back(), 1e-3);
   const double emax = r.ate_errors_m.empty() ? 1.0 : std::max(*std::max_element(r.ate_errors_m.begin(), r.ate_errors_m.end()) * 1.1, 1e-3);
   Panel err{620, 80, 440, 420, 0.0, tmax, 0.0, emax};

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include "edgevio/common/time.h"
 
 namespace edgevio::imu {
 
@@ -27,7 +28,7 @@ bool forEachImuInterval(const std::vector<ImuSample>& imu, std::int64_t t0, std:
   while (prev.t_ns < t1) {
     const std::int64_t t_next = std::min(it->t_ns, t1);
     const ImuSample next = t_next == it->t_ns ? *it : interpolate(*(it - 1), *it, t_next);
-    f(static_cast<double>(next.t_ns - prev.t_ns) * 1e-9, prev.accel, prev.gyro, next.accel, next.gyro);
+    f(toSeconds(next.t_ns - prev.t_ns), prev.accel, prev.gyro, next.accel, next.gyro);
     prev = next;
     if (t_next == it->t_ns && it + 1 != imu.end()) ++it;
   }
@@ -49,7 +50,7 @@ StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t 
   // ~1 m/s² of spread per sample) averages out, real motion does not.
   constexpr std::int64_t kChunk = 100000000;
   StaticInit s;
-  const auto t1 = t0 + static_cast<std::int64_t>(window_s * 1e9);
+  const auto t1 = t0 + toNanoseconds(window_s);
   std::vector<Vec3> chunk_a, chunk_g;
   Vec3 sa = Vec3::Zero(), sg = Vec3::Zero(), ca = Vec3::Zero(), cg = Vec3::Zero();
   int in_chunk = 0;

@@ -1,5 +1,6 @@
 #include "edgevio/imu/preintegration.h"
 
+#include "edgevio/common/time.h"
 #include "edgevio/imu/gyro_integration.h"
 
 #include <algorithm>
@@ -138,7 +139,7 @@ std::optional<Preintegration> preintegrate(const std::vector<ImuSample>& imu, st
   auto it = std::lower_bound(imu.begin(), imu.end(), t0, byTime);
   if (it != imu.begin()) --it;
   for (; it != imu.end() && it + 1 != imu.end() && it->t_ns < t1; ++it)
-    if (static_cast<double>((it + 1)->t_ns - it->t_ns) * 1e-9 > max_gap_s) return std::nullopt;
+    if (toSeconds((it + 1)->t_ns - it->t_ns) > max_gap_s) return std::nullopt;
   Preintegration p(b_a, b_g, noise);
   const bool covered = forEachImuInterval(imu, t0, t1, [&](double dt, const Vec3& a0, const Vec3& w0, const Vec3& a1, const Vec3& w1) {
     p.integrate(dt, a0, w0, a1, w1);

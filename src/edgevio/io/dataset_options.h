@@ -5,8 +5,7 @@ namespace edgevio::io {
 
 /// Reading a dataset (config section `dataset`).
 struct DatasetOptions {
-  double stereo_sync_tolerance_s;
-  double imu_gap_warning_s;
+  double stereo_sync_tolerance_s, imu_gap_warning_s;
 
   DatasetOptions() { options::setDefaults(*this); }
   static const options::Table<DatasetOptions>& table();

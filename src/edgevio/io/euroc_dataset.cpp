@@ -8,6 +8,7 @@
 
 #include "edgevio/common/error.h"
 #include "edgevio/common/table_reader.h"
+#include "edgevio/common/time.h"
 #include "edgevio/io/calibration_io.h"
 #include "edgevio/io/imu_io.h"
 #include "edgevio/io/png_reader.h"
@@ -65,7 +66,7 @@ std::vector<ImageRecord> EurocDataset::readImageList(int cam) {
 }
 
 void EurocDataset::pairFrames(const std::vector<ImageRecord>& left, const std::vector<ImageRecord>& right) {
-  const auto tol = static_cast<std::int64_t>(std::llround(options_.stereo_sync_tolerance_s * 1e9));
+  const auto tol = toNanoseconds(options_.stereo_sync_tolerance_s);
   std::size_t i = 0, j = 0;
   while (i < left.size() && j < right.size()) {
     const std::int64_t d = left[i].t_ns - right[j].t_ns;
@@ -96,12 +97,12 @@ void EurocDataset::readImu() {
 
 double EurocDataset::imuRateHz() const {
   if (imu_.size() < 2) return 0.0;
-  return static_cast<double>(imu_.size() - 1) / (static_cast<double>(imu_.back().t_ns - imu_.front().t_ns) * 1e-9);
+  return static_cast<double>(imu_.size() - 1) / toSeconds(imu_.back().t_ns - imu_.front().t_ns);
 }
 
 double EurocDataset::durationSeconds() const {
   if (pairs_.size() < 2) return 0.0;
-  return static_cast<double>(pairs_.back().t_ns - pairs_.front().t_ns) * 1e-9;
+  return toSeconds(pairs_.back().t_ns - pairs_.front().t_ns);
 }
 
 cv::Mat decodeGrayImage(const std::string& path) {

@@ -6,12 +6,13 @@
 
 #include "edgevio/common/error.h"
 #include "edgevio/common/table_reader.h"
+#include "edgevio/common/time.h"
 
 namespace edgevio::io {
 
 std::vector<imu::ImuSample> readImuCsv(const std::string& path, double gap_warning_s, std::vector<std::string>* warnings) {
   TableReader r(path, TableReader::Separator::kComma);
-  const auto gap_ns = static_cast<std::int64_t>(std::llround(gap_warning_s * 1e9));
+  const auto gap_ns = toNanoseconds(gap_warning_s);
   std::vector<imu::ImuSample> imu;
   while (r.next()) {
     r.requireFields(7, "timestamp [ns],w_x,w_y,w_z,a_x,a_y,a_z");
@@ -26,8 +27,8 @@ std::vector<imu::ImuSample> readImuCsv(const std::string& path, double gap_warni
                " timestamp: IMU rows must be in strictly increasing time order");
       if (dt > gap_ns && warnings) {
         char buf[160];
-        std::snprintf(buf, sizeof buf, ": IMU gap of %.3f s before t = %.3f s", static_cast<double>(dt) * 1e-9,
-                      static_cast<double>(s.t_ns) * 1e-9);
+        std::snprintf(buf, sizeof buf, ": IMU gap of %.3f s before t = %.3f s", toSeconds(dt),
+                      toSeconds(s.t_ns));
         warnings->push_back(r.path() + ":" + std::to_string(r.line()) + buf);
       }
     }

@@ -6,8 +6,7 @@ namespace edgevio::loop {
 /// Back links (config section `back_links`; loop/back_links.h).
 struct BackLinkOptions {
   int keyframes;
-  double max_disagreement_m;
-  double max_disagreement_deg;
+  double max_disagreement_m, max_disagreement_deg;
 
   BackLinkOptions() { options::setDefaults(*this); }
   static const options::Table<BackLinkOptions>& table();

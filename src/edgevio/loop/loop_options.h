@@ -5,18 +5,10 @@ namespace edgevio::loop {
 
 /// Local loop closure (config section `loop`; METHOD.md §6).
 struct LoopOptions {
-  double max_distance_depth_ratio;
-  double max_view_angle_deg;
-  int skip_recent_keyframes;
-  int cross_check_level;
-  int max_coarse_attempts;
-  int max_full_attempts;
-  double realtime_max_ms;
-  double coarse_max_mean_distance_px;
-  double coarse_min_visible_ratio;
-  double max_disagreement_m;
-  double max_disagreement_deg;
-  double min_visible_ratio;
+  double max_distance_depth_ratio, max_view_angle_deg;
+  int skip_recent_keyframes, cross_check_level, max_coarse_attempts, max_full_attempts;
+  double realtime_max_ms, coarse_max_mean_distance_px, coarse_min_visible_ratio, max_disagreement_m,
+      max_disagreement_deg, min_visible_ratio;
 
   LoopOptions() { options::setDefaults(*this); }
   static const options::Table<LoopOptions>& table();

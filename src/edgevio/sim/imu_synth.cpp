@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "edgevio/common/time.h"
 #include "edgevio/sim/random.h"
 
 namespace edgevio::sim {
@@ -10,7 +11,7 @@ SynthesizedImu synthesizeImu(const SplineTrajectory& trajectory, std::int64_t be
                              const ImuSynthOptions& o, std::uint64_t seed) {
   SynthesizedImu out;
   const auto step = static_cast<std::int64_t>(std::llround(1e9 / o.densities.rate_hz));
-  const double dt = static_cast<double>(step) * 1e-9;
+  const double dt = toSeconds(step);
   Rng rng(hashCombine(seed, 0x1a5));
   const auto gaussian3 = [&] { return Vec3(rng.gaussian(), rng.gaussian(), rng.gaussian()); };
   Vec3 bg = Vec3::Zero(), ba = Vec3::Zero();

@@ -18,11 +18,7 @@ namespace edgevio::sim {
 
 /// The room and its contents (keys of config section `sim`).
 struct SceneOptions {
-  double room_margin_m;
-  double floor_below_path_m;
-  double ceiling_above_path_m;
-  double min_room_size_m;
-  double max_room_size_m;
+  double room_margin_m, floor_below_path_m, ceiling_above_path_m, min_room_size_m, max_room_size_m;
   int obstacle_count;
   double obstacle_clearance_m;
   int texture_log2_size;

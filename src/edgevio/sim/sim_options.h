@@ -7,26 +7,13 @@ namespace edgevio::sim {
 /// The simulator (config section `sim`). Command-line flags of `edgevio
 /// simulate` override the options they name.
 struct SimOptions {
-  double knot_dt_s;
-  double max_trajectory_gap_s;
-  double trajectory_max_accel_mps2;
-  double trajectory_step_spread_s;
-  double static_start_s;
-  double scenario_duration_s;
+  double knot_dt_s, max_trajectory_gap_s, trajectory_max_accel_mps2, trajectory_step_spread_s, static_start_s,
+      scenario_duration_s;
   SceneOptions scene;
-  double exposure_gain;
-  double image_noise_sigma;
-  double vignetting;
-  double stereo_brightness_mismatch;
-  double exposure_drift_amplitude;
-  double exposure_drift_period_s;
-  double lighting_change_interval_s;
-  double lighting_change_magnitude;
-  double blur_substep_ms;
-  double initial_gyro_bias_sigma;
-  double initial_accel_bias_sigma;
-  int png_compression;
-  int threads;
+  double exposure_gain, image_noise_sigma, vignetting, stereo_brightness_mismatch, exposure_drift_amplitude,
+      exposure_drift_period_s, lighting_change_interval_s, lighting_change_magnitude, blur_substep_ms,
+      initial_gyro_bias_sigma, initial_accel_bias_sigma;
+  int png_compression, threads;
 
   SimOptions() { options::setDefaults(*this); }
   static const options::Table<SimOptions>& table();

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/time.h"
 #include "edgevio/io/calibration_io.h"
 #include "edgevio/io/imu_io.h"
 #include "edgevio/io/png_writer.h"
@@ -29,7 +30,7 @@ namespace {
 
 std::string seconds(std::int64_t t_ns) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(t_ns) * 1e-9);
+  std::snprintf(buf, sizeof buf, "%.3f", toSeconds(t_ns));
   return buf;
 }
 
@@ -38,12 +39,12 @@ class LightingChanges {
  public:
   LightingChanges(std::int64_t begin_ns, std::int64_t end_ns, double interval_s, double magnitude, std::uint64_t seed) {
     Rng rng(hashCombine(seed, 0x11947));
-    double t = static_cast<double>(begin_ns) * 1e-9;
-    const double end = static_cast<double>(end_ns) * 1e-9;
+    double t = toSeconds(begin_ns);
+    const double end = toSeconds(end_ns);
     while (true) {
       t += interval_s * rng.uniform(0.5, 1.5);
       if (t >= end) break;
-      changes_.emplace_back(static_cast<std::int64_t>(t * 1e9), static_cast<float>(rng.uniform(1 - magnitude, 1 + magnitude)));
+      changes_.emplace_back(toNanoseconds(t), static_cast<float>(rng.uniform(1 - magnitude, 1 + magnitude)));
     }
   }
   float scale(std::int64_t t_ns) const {
@@ -80,7 +81,7 @@ double knotSpacing(const io::Trajectory& samples, double knot_dt_s) {
   gaps.reserve(samples.size() - 1);
   for (std::size_t i = 1; i < samples.size(); ++i) gaps.push_back(samples[i].t_ns - samples[i - 1].t_ns);
   std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
-  return std::max(knot_dt_s, 1e-9 * static_cast<double>(gaps[gaps.size() / 2]));
+  return std::max(knot_dt_s, toSeconds(gaps[gaps.size() / 2]));
 }
 
 }  // namespace
@@ -110,22 +111,22 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
     if (!(duration > 0)) throw InputError("--duration must be > 0");
     samples = scenarioSamples(req.scenario, req.start_s + duration + margin_s, options.static_start_s, rig.T_b_c[0]);
     source = "scenario " + req.scenario;
-    begin_ns = kScenarioStartNs + static_cast<std::int64_t>(std::llround(req.start_s * 1e9));
-    end_ns = begin_ns + static_cast<std::int64_t>(std::llround(duration * 1e9));
+    begin_ns = kScenarioStartNs + toNanoseconds(req.start_s);
+    end_ns = begin_ns + toNanoseconds(duration);
   } else {
     samples = io::readTrajectory(req.trajectory_file);
     source = req.trajectory_file;
     position_steps = removePositionSteps(samples, options.trajectory_max_accel_mps2, options.trajectory_step_spread_s);
-    begin_ns = samples.front().t_ns + static_cast<std::int64_t>(std::llround(req.start_s * 1e9));
+    begin_ns = samples.front().t_ns + toNanoseconds(req.start_s);
     end_ns = std::isnan(req.duration_s) ? samples.back().t_ns
-                                        : begin_ns + static_cast<std::int64_t>(std::llround(req.duration_s * 1e9));
+                                        : begin_ns + toNanoseconds(req.duration_s);
     if (begin_ns >= samples.back().t_ns || end_ns > samples.back().t_ns)
       throw InputError(source, 0, "the trajectory covers [" + seconds(samples.front().t_ns) + ", " +
                                       seconds(samples.back().t_ns) + "] s but [" + seconds(begin_ns) + ", " +
                                       seconds(end_ns) + "] s was requested (check --start and --duration)");
   }
   constexpr double kMinDuration = 0.5;
-  if (static_cast<double>(end_ns - begin_ns) * 1e-9 < kMinDuration)
+  if (toSeconds(end_ns - begin_ns) < kMinDuration)
     throw InputError(source, 0, "too short: the requested span is " + seconds(end_ns - begin_ns) + " s, at least " +
                                     std::to_string(kMinDuration) + " s are needed");
   const double knot_dt_s = knotSpacing(samples, options.knot_dt_s);
@@ -233,7 +234,7 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   summary.setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   for (std::size_t k = 0; k < total; ++k) {
     const std::int64_t t = begin_ns + static_cast<std::int64_t>(k) * frame_step;
-    const double t_rel = static_cast<double>(t - begin_ns) * 1e-9;
+    const double t_rel = toSeconds(t - begin_ns);
     const bool drop_cam1 = Rng(hashCombine(req.seed, 0xd809 + k)).uniform() < req.drop_rate;
     const float light_scale = req.exposure_changes ? lighting.scale(t) : 1.0f;
     double gain = 1.0;
@@ -263,7 +264,7 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   summary.imu_samples = imu.samples.size();
   summary.position_steps_removed = position_steps;
   summary.knot_dt_s = knot_dt_s;
-  summary.duration_s = static_cast<double>(end_ns - begin_ns) * 1e-9;
+  summary.duration_s = toSeconds(end_ns - begin_ns);
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return summary;
 }

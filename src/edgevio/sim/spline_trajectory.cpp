@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include "edgevio/common/time.h"
 
 namespace edgevio::sim {
 
@@ -20,7 +21,7 @@ std::int64_t SplineTrajectory::endNs() const {
 }
 
 KinematicState SplineTrajectory::evaluate(std::int64_t t_ns) const {
-  const double dt = static_cast<double>(dt_ns_) * 1e-9;
+  const double dt = toSeconds(dt_ns_);
   // Segment index and local parameter; times outside the range are clamped.
   const std::int64_t rel = std::clamp<std::int64_t>(t_ns - t0_ns_, 0, endNs() - t0_ns_);
   std::size_t i = static_cast<std::size_t>(rel / dt_ns_);

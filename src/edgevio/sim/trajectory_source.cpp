@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/time.h"
 
 namespace edgevio::sim {
 
@@ -98,7 +99,7 @@ io::Trajectory scenarioSamples(const std::string& name, double duration_s, doubl
   io::Trajectory out;
   const auto n = static_cast<std::int64_t>(std::ceil(duration_s * 1e9 / static_cast<double>(step)));
   for (std::int64_t k = 0; k <= n; ++k) {
-    const double t = static_cast<double>(k * step) * 1e-9;
+    const double t = toSeconds(k * step);
     const Motion m = scenarioMotion(name, std::max(0.0, t - static_start_s));
     io::TrajectorySample s;
     s.t_ns = kScenarioStartNs + k * step;
@@ -115,7 +116,7 @@ int removePositionSteps(io::Trajectory& samples, double max_accel_mps2, double s
   constexpr std::size_t kSide = 5;  // neighbours on each side of an increment
   const std::size_t n = samples.size();
   if (max_accel_mps2 <= 0.0 || n < 2 * kSide + 2) return 0;
-  const auto dt = [&](std::size_t i) { return static_cast<double>(samples[i].t_ns - samples[i - 1].t_ns) * 1e-9; };
+  const auto dt = [&](std::size_t i) { return toSeconds(samples[i].t_ns - samples[i - 1].t_ns); };
   // Velocity of increment i (i = 1..n−1); equal timestamps carry no velocity.
   std::vector<Vec3> vel(n, Vec3::Zero());
   for (std::size_t i = 1; i < n; ++i)
@@ -167,7 +168,7 @@ int removePositionSteps(io::Trajectory& samples, double max_accel_mps2, double s
     count[i + 1] = count[i] + (observed ? 1 : 0);
   }
   // Moving average over ±spread_s/2 (fewer samples near the ends).
-  const auto half_ns = static_cast<std::int64_t>(std::llround(0.5 * spread_s * 1e9));
+  const auto half_ns = toNanoseconds(0.5 * spread_s);
   std::size_t lo = 0, hi = 0;
   for (std::size_t i = 0; i < n; ++i) {
     while (samples[lo].t_ns < samples[i].t_ns - half_ns) ++lo;
@@ -183,7 +184,7 @@ SplineTrajectory fitSpline(const io::Trajectory& samples, std::int64_t begin_ns,
                            double knot_dt_s, double max_gap_s, const std::string& source) {
   const auto seconds = [](std::int64_t t) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(t) * 1e-9);
+    std::snprintf(buf, sizeof buf, "%.3f", toSeconds(t));
     return std::string(buf);
   };
   if (samples.size() < 2) throw InputError(source, 0, "trajectory has fewer than 2 poses");
@@ -193,7 +194,7 @@ SplineTrajectory fitSpline(const io::Trajectory& samples, std::int64_t begin_ns,
                      "trajectory covers [" + seconds(samples.front().t_ns) + ", " + seconds(samples.back().t_ns) +
                          "] s but [" + seconds(begin_ns) + ", " + seconds(end_ns) +
                          "] s was requested (check --start and --duration)");
-  const auto gap_ns = static_cast<std::int64_t>(max_gap_s * 1e9);
+  const auto gap_ns = toNanoseconds(max_gap_s);
   for (std::size_t i = 1; i < samples.size(); ++i) {
     if (samples[i].t_ns < begin_ns - 2 * gap_ns || samples[i - 1].t_ns > end_ns + 2 * gap_ns) continue;
     if (samples[i].t_ns - samples[i - 1].t_ns > gap_ns)
@@ -202,7 +203,7 @@ SplineTrajectory fitSpline(const io::Trajectory& samples, std::int64_t begin_ns,
                            seconds(samples[i - 1].t_ns) + " s (longest allowed: sim.max_trajectory_gap_s = " +
                            std::to_string(max_gap_s) + " s)");
   }
-  const auto dt = static_cast<std::int64_t>(std::llround(knot_dt_s * 1e9));
+  const auto dt = toNanoseconds(knot_dt_s);
   const std::int64_t n = (end_ns - begin_ns + dt - 1) / dt + 3;
   std::vector<SE3> cps;
   for (std::int64_t k = 0; k < n; ++k) {

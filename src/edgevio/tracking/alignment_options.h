@@ -24,13 +24,9 @@ struct AlignmentOptions {
   int max_stalled_iterations;
   RobustWeight weight;
   double cauchy_c2;
-  int border_px;
-  int min_points;
-  int max_points;
-  double max_normal_angle_deg;
-  double self_check_max_mean_distance_px;
-  double self_check_min_visible_ratio;
-  double self_check_max_translation_sigma_m;
+  int border_px, min_points, max_points;
+  double max_normal_angle_deg, self_check_max_mean_distance_px, self_check_min_visible_ratio,
+      self_check_max_translation_sigma_m;
 
   AlignmentOptions() { options::setDefaults(*this); }
   static const options::Table<AlignmentOptions>& table();

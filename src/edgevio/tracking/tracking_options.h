@@ -8,16 +8,11 @@ namespace edgevio::tracking {
 struct TrackingOptions {
   double keyframe_edge_ratio;
   int keyframe_min_points;
-  double keyframe_min_visible_ratio;
-  double gyro_check_deg;
+  double keyframe_min_visible_ratio, gyro_check_deg;
   int gyro_check_realign_levels;
-  double imu_translation_check_m;
-  double rotation_prior_deg;
-  double rotation_prior_fraction;
+  double imu_translation_check_m, rotation_prior_deg, rotation_prior_fraction;
   int lost_after_failures;
-  double static_init_window_s;
-  double static_accel_std_max;
-  double static_gyro_std_max;
+  double static_init_window_s, static_accel_std_max, static_gyro_std_max;
 
   TrackingOptions() { options::setDefaults(*this); }
   static const options::Table<TrackingOptions>& table();

@@ -14,16 +14,9 @@ inline constexpr options::Choice<CannyThresholds> kCannyThresholdChoices[] = {
 struct VisionOptions {
   int levels;
   CannyThresholds canny_thresholds;
-  double canny_otsu_offset;
-  double canny_min_low;
-  double canny_max_high;
-  double canny_fixed_low;
-  double canny_fixed_high;
-  int stereo_num_disparities;
-  int stereo_block_size;
-  double stereo_min_disparity;
-  double stereo_disparity_sigma;
-  double stereo_discontinuity_ratio;
+  double canny_otsu_offset, canny_min_low, canny_max_high, canny_fixed_low, canny_fixed_high;
+  int stereo_num_disparities, stereo_block_size;
+  double stereo_min_disparity, stereo_disparity_sigma, stereo_discontinuity_ratio;
   int stereo_discontinuity_radius_px;
 
   VisionOptions() { options::setDefaults(*this); }
