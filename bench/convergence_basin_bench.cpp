@@ -27,7 +27,7 @@ struct View {
 
 bool success(const geometry::SE3& truth, const geometry::SE3& est) {
   const geometry::SE3 E = truth.inverse() * est;
-  return E.translation().norm() < 0.01 && geometry::angle(E.so3()) * 57.29578 < 0.2;
+  return E.translation().norm() < 0.01 && geometry::angle(E.so3()) * kRadToDeg < 0.2;
 }
 
 }  // namespace
@@ -67,7 +67,7 @@ int main() {
       const geometry::SE3 truth = fx.relative(views[k].sample, views[k].sample + 10);
       for (int a = 0; a < 4; ++a) {
         const Vec3 axis = Vec3(rng.gaussian(), rng.gaussian(), rng.gaussian()).normalized();
-        const geometry::SE3 init(truth.so3() * geometry::SO3::exp(axis * deg / 57.29578), truth.translation());
+        const geometry::SE3 init(truth.so3() * geometry::SO3::exp(axis * deg * kDegToRad), truth.translation());
         ok += success(truth, tracking::alignEdges(views[k].depth, next[k], init, ao).T_nr);
         ++n;
       }
@@ -85,7 +85,7 @@ int main() {
       const vision::EdgePyramid cur = currentPyramid(j);
       const geometry::SE3 truth = fx.relative(v.sample, j);
       motion += truth.translation().norm();
-      rot += geometry::angle(truth.so3()) * 57.29578;
+      rot += geometry::angle(truth.so3()) * kRadToDeg;
       ok_id += success(truth, tracking::alignEdges(v.depth, cur, geometry::SE3(), ao).T_nr);
       ok_gyro += success(truth, tracking::alignEdges(v.depth, cur, geometry::SE3(truth.so3(), Vec3::Zero()), ao).T_nr);
       ++n;

@@ -14,8 +14,7 @@ namespace {
 
 using geometry::SE3;
 using geometry::SO3;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = 180.0 / kPi;
+constexpr double kDeg = kRadToDeg;
 
 /// A smooth 3-D loop sampled at 20 Hz for `seconds`.
 io::Trajectory loop(double seconds) {

@@ -12,7 +12,6 @@
 namespace edgevio::geometry {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 /// Rotation vectors covering generic, tiny and near-π angles.
 std::vector<Vec3> testRotationVectors() {

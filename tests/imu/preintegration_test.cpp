@@ -60,7 +60,7 @@ TEST(Preintegration, ResidualVanishesAtGroundTruthWithNoiseOff) {
         const Preintegration p = preintegrateSpan(m.imu, k0, k0 + span, Vec3::Zero(), Vec3::Zero());
         const Vec15 r = p.residual(trueState(m, k0), trueState(m, k0 + span));
         worst_p = std::max(worst_p, r.segment<3>(kP).norm());
-        worst_r = std::max(worst_r, r.segment<3>(kR).norm() * 57.29578);
+        worst_r = std::max(worst_r, r.segment<3>(kR).norm() * kRadToDeg);
         worst_v = std::max(worst_v, r.segment<3>(kV).norm());
       }
       std::printf("%s, %zu samples: worst |r_p| %.2e m, |r_theta| %.2e deg, |r_v| %.2e m/s\n", name.c_str(), span,

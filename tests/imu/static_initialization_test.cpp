@@ -16,7 +16,6 @@ namespace {
 using geometry::SO3;
 
 constexpr double kG = 9.81;
-constexpr double kPi = 3.14159265358979323846;
 constexpr std::int64_t kDtNs = 5000000;  // 200 Hz
 
 /// Angle between the world z axis and the "up" the initial attitude assumes

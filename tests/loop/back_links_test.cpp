@@ -17,7 +17,7 @@ namespace {
 using geometry::SE3;
 using geometry::SO3;
 
-constexpr double kDeg = 3.14159265358979323846 / 180;
+constexpr double kDeg = kDegToRad;
 
 std::shared_ptr<const tracking::KeyframeData> keyframe(const test::RenderFixture& fx, std::size_t sample) {
   return fx.keyframe(fx.path()[sample].T_w_b, static_cast<std::int64_t>(sample), sample);

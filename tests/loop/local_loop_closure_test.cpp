@@ -21,7 +21,6 @@ using geometry::SO3;
 
 constexpr double kNoBudget = std::numeric_limits<double>::infinity();
 
-constexpr double kPi = 3.14159265358979323846;
 
 std::shared_ptr<const tracking::KeyframeData> keyframe(const test::RenderFixture& fx, const SE3& T_w_b, std::int64_t t) {
   return fx.keyframe(T_w_b, t, static_cast<std::uint64_t>(t));

@@ -38,7 +38,7 @@ WindowError integrateWindow(const SplineTrajectory& s, const SynthesizedImu& imu
     R = R_next;
   }
   const KinematicState end = s.evaluate(imu.samples[i0 + n].t_ns);
-  return {(p - end.T_w_b.translation()).norm(), geometry::angle(R.inverse() * end.T_w_b.so3()) * 180.0 / 3.14159265358979};
+  return {(p - end.T_w_b.translation()).norm(), geometry::angle(R.inverse() * end.T_w_b.so3()) * kRadToDeg};
 }
 
 void checkAllWindows(const SplineTrajectory& s, const std::string& what) {
