@@ -17,6 +17,7 @@
 #include "edgevio/common/error.h"
 #include "edgevio/common/table_reader.h"
 #include "edgevio/eval/metrics.h"
+#include "edgevio/io/imu_io.h"
 #include "edgevio/io/trajectory_io.h"
 #include "edgevio/pipeline/mode.h"
 #include "edgevio/sim/simulator.h"
@@ -33,7 +34,7 @@ RunRequest request(const std::string& dataset, const std::string& out, Mode mode
 }
 
 
-TEST(Run, RealStaticFolderDriftsLessThan5cm) {
+TEST(Run, RealStaticFolderDriftsLessThan7mm) {
   EDGEVIO_REQUIRE_SHARED_DATA("euroc/V1_01_easy_micro");
   TempDir out;
   const RunSummary s = run(request(data_path, out.path(), kEdgeOnly), Config{});
@@ -50,7 +51,10 @@ TEST(Run, RealStaticFolderDriftsLessThan5cm) {
   for (const auto& e : est) drift = std::max(drift, (e.T_w_b.translation() - est.front().T_w_b.translation()).norm());
   std::printf("real V1_01 micro, edge-only: max displacement %.4f m (ground truth moves at most %.4f m)\n", drift,
               gt_motion);
-  EXPECT_LT(drift, 0.05);
+  // Sub-clips of 60 of these frames (starting at frames 0, 5, ..., 35)
+  // drifted 0.7-2.7 mm; drift grows at most linearly with the frames, and
+  // the rig's own motion adds up to 2 mm: 95/60 x 2.7 + 2 = 6.3 mm.
+  EXPECT_LT(drift, 0.007);
   // Static initialisation found gravity: "up" seen from the body agrees with
   // the ground truth's (yaw is unobservable and not compared).
   const Vec3 up_est = est.front().T_w_b.so3().inverse() * Vec3::UnitZ();
@@ -85,7 +89,10 @@ TEST(Run, RealStaticFolderEdgeImuFindsGravityAndGyroBias) {
   const double bias_error = (est.back().b_g - gtAt(est.back().t_ns).b_g).norm();
   std::printf("real V1_01 micro, edge+imu: drift %.4f m, gravity within %.3f deg, gyro bias %.5f rad/s from ground truth\n",
               drift, worst_gravity_deg, bias_error);
-  EXPECT_LT(drift, 0.02);
+  // Sub-clips of 60 frames drifted 1.2-3.4 mm: 95/60 x 3.4 + 2 = 7.4 mm (see
+  // the edge-only test). Gravity and the gyroscope bias: the targets of the
+  // static start (1 deg, 2e-3 rad/s; the ground truth's own bias is good to ~1e-3).
+  EXPECT_LT(drift, 0.008);
   EXPECT_LT(worst_gravity_deg, 1.0);
   EXPECT_LT(bias_error, 2e-3);
 }
@@ -154,7 +161,10 @@ TEST(Run, ShortRenderedSequenceIsAccurateAndDeterministic) {
                      io::readTrajectory(a.file("trajectory_tum.txt")), eval::EvalOptions{});
   std::printf("4 s figure8 render, edge-only: ATE %.4f m (se3), ARE %.4f deg/m, %.4f m/m, %zu keyframes\n", r.ate_rmse_m,
               r.are_rot_deg_per_m, r.are_trans_m_per_m, s.keyframes);
-  EXPECT_LT(r.ate_rmse_m, 0.05);  // measured 0.0046 m (0.029 m before the normal check and the discontinuity test)
+  // The same render with seeds 1-12 (scene, textures, noise): 1.3-14.1 mm
+  // (4.6 mm for this seed, 9). A change that puts this scene beyond the worst
+  // of them is a change to look at.
+  EXPECT_LT(r.ate_rmse_m, 0.015);
   // Outputs of the run folder.
   const std::string summary = test::readFile(a.file("summary.json"));
   for (const char* key : {"\"mode\": \"edge-only\"", "\"frames\": 81", "\"keyframes\"", "\"self_check_failures\"",
@@ -182,7 +192,8 @@ TEST(Run, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
                      io::readTrajectory(a.file("trajectory_tum.txt")), eval::EvalOptions{});
   std::printf("4 s figure8 render, edge+imu: ATE %.4f m (se3), ARE %.4f deg/m, %.4f m/m\n", r.ate_rmse_m,
               r.are_rot_deg_per_m, r.are_trans_m_per_m);
-  EXPECT_LT(r.ate_rmse_m, 0.03);  // measured 0.0017 m (0.013 m before the normal check and the discontinuity test, 0.017 m without back links)
+  // Seeds 1-12 of this render: 1.2-3.4 mm (1.7 mm for this one), as above.
+  EXPECT_LT(r.ate_rmse_m, 0.0035);
   const std::string csv = test::readFile(a.file("frames.csv"));
   const std::string header = csv.substr(0, csv.find('\n'));
   for (const char* column : {"prediction_check", "external_check", "est_iterations", "est_final_cost", "marginalized",
@@ -290,7 +301,24 @@ TEST(Run, ShortRenderedSequenceWithAnImuGapRestartsAndRecovers) {
   imu.close();
   const RunSummary s = run(request(out.file("gap"), out.file("run"), kEdgeImu), Config{});
   EXPECT_FALSE(s.failed) << s.failure;
-  EXPECT_GE(s.estimator_resets, 1u);
+  // The readings around the gap: r_a, the last before it, and r_b, the first after.
+  const std::vector<imu::ImuSample> kept = io::readImuCsv((dst / "imu0" / "data.csv").string(), 1.0, nullptr);
+  std::int64_t r_a = 0, r_b = 0;
+  for (std::size_t i = 1; i < kept.size(); ++i)
+    if (kept[i].t_ns - kept[i - 1].t_ns > 100000000) r_a = kept[i - 1].t_ns, r_b = kept[i].t_ns;
+  // A frame's preintegration starts at the reading before its predecessor:
+  // it spans the gap when t_k > r_a and t_{k-1} <= r_b. Each such frame
+  // restarts the window, and no other one does.
+  TableReader frames(out.file("run/frames.csv"), TableReader::Separator::kComma, TableReader::Header::kColumnNames);
+  std::size_t expected = 0;
+  std::int64_t t_prev = -1;
+  while (frames.next()) {
+    const std::int64_t t = frames.integer(frames.column("timestamp_ns"));
+    expected += t_prev >= 0 && t > r_a && t_prev <= r_b;
+    t_prev = t;
+  }
+  EXPECT_EQ(s.estimator_resets, expected);
+  EXPECT_EQ(expected, 11u);  // 0.5 s at 20 Hz, and the frame after the gap's last reading
   ASSERT_FALSE(s.events.empty());
   EXPECT_NE(s.events.front().find("IMU gap"), std::string::npos) << s.events.front();
   EXPECT_NE(test::readFile(out.file("run/summary.json")).find("IMU gap"), std::string::npos);
@@ -299,11 +327,11 @@ TEST(Run, ShortRenderedSequenceWithAnImuGapRestartsAndRecovers) {
       eval::evaluate(io::readTrajectory(simulated().dataset + "/mav0/state_groundtruth_estimate0/data.csv"),
                      io::readTrajectory(out.file("run/trajectory_tum.txt")), eval::EvalOptions{});
   std::printf("4 s figure8 with a 0.5 s IMU gap, edge+imu: %zu resets, ATE %.4f m\n", s.estimator_resets, r.ate_rmse_m);
-  // Tracking carries the pose across the gap, but after the restart the tilt
-  // is weakly observable for a while: measured 0.0036 m against 0.0017 m
-  // without the gap (0.12 m against 0.017 m before the normal check and the
-  // discontinuity test; a known weakness, see README). Bounded, finite, reported.
-  EXPECT_LT(r.ate_rmse_m, 0.25);
+  // Tracking carries the pose across the gap. With seeds 1-12 of this render
+  // the runs ended 1.2-6.8 mm off (3.6 mm for this one), except seed 4,
+  // which drifted 0.34 m after the restarts (a known weakness of restarting
+  // at every frame of a gap): the bound is the worst of the others.
+  EXPECT_LT(r.ate_rmse_m, 0.007);
 }
 
 TEST(Run, SkipKeepsEveryKPlusOneFrame) {

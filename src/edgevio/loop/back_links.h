@@ -10,7 +10,7 @@
 // and agree with its initial guess, the estimated relative pose T_kl (for the
 // previous keyframe: the tracking link itself), within max_disagreement:
 //   ‖t(T_back · T_kl⁻¹)‖ ≤ max_disagreement_m,  ∠(T_back · T_kl⁻¹) ≤ max_disagreement_deg.
-// Measured on the 18 EuRoC renders (edge+imu): see README.md.
+// Their effect on the EuRoC renders: docs/method-deviations.md.
 #include <vector>
 
 #include "edgevio/loop/back_link_options.h"
