@@ -9,30 +9,27 @@
 namespace edgevio::camera {
 namespace {
 
-CameraModel eurocCam0() {
+CameraModel pinhole(int width, int height, double fx, double fy, double cx, double cy, Distortion d, const std::array<double, 4>& coeffs) {
   CameraModel c;
-  c.width = 752;
-  c.height = 480;
-  c.fx = 458.654;
-  c.fy = 457.296;
-  c.cx = 367.215;
-  c.cy = 248.375;
-  c.distortion = Distortion::kRadialTangential;
-  c.coeffs = {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05};
+  c.width = width;
+  c.height = height;
+  c.fx = fx;
+  c.fy = fy;
+  c.cx = cx;
+  c.cy = cy;
+  c.distortion = d;
+  c.coeffs = coeffs;
   return c;
 }
 
+CameraModel eurocCam0() {
+  return pinhole(752, 480, 458.654, 457.296, 367.215, 248.375, Distortion::kRadialTangential,
+                 {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05});
+}
+
 CameraModel tumViCam0() {  // TUM-VI 512x512 equidistant calibration
-  CameraModel c;
-  c.width = 512;
-  c.height = 512;
-  c.fx = 190.978;
-  c.fy = 190.973;
-  c.cx = 254.932;
-  c.cy = 256.897;
-  c.distortion = Distortion::kEquidistant;
-  c.coeffs = {0.0034823, 0.000715034, -0.00205341, 0.000202937};
-  return c;
+  return pinhole(512, 512, 190.978, 190.973, 254.932, 256.897, Distortion::kEquidistant,
+                 {0.0034823, 0.000715034, -0.00205341, 0.000202937});
 }
 
 std::vector<Vec3> testPoints() {
