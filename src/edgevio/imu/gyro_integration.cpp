@@ -44,17 +44,25 @@ bool integrateGyro(const std::vector<ImuSample>& imu, std::int64_t t0, std::int6
   return ok;
 }
 
+namespace {
+// Motion is judged on 0.1 s means: rotor vibration (a standing drone reads
+// ~1 m/s² of spread per sample) averages out, real motion does not.
+constexpr std::int64_t kChunkNs = 100000000;
+// A spread needs at least three chunk means, and the mean reading ten samples.
+constexpr std::size_t kMinChunks = 3, kMinSamples = 10;
+// Below this mean specific force the IMU is falling or its log is broken:
+// there is no "up" to align with (at rest it reads g = 9.81).
+constexpr double kMinSpecificForce = 5.0;
+}  // namespace
+
 StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t t0, double window_s,
                                 double accel_std_max, double gyro_std_max) {
-  // Motion is judged on 0.1 s means: rotor vibration (a standing drone reads
-  // ~1 m/s² of spread per sample) averages out, real motion does not.
-  constexpr std::int64_t kChunk = 100000000;
   StaticInit s;
   const auto t1 = t0 + toNanoseconds(window_s);
   std::vector<Vec3> chunk_a, chunk_g;
   Vec3 sa = Vec3::Zero(), sg = Vec3::Zero(), ca = Vec3::Zero(), cg = Vec3::Zero();
   int in_chunk = 0;
-  std::int64_t chunk_end = t0 + kChunk;
+  std::int64_t chunk_end = t0 + kChunkNs;
   for (const auto& m : imu) {
     if (m.t_ns < t0 || m.t_ns > t1) continue;
     while (m.t_ns >= chunk_end) {
@@ -64,7 +72,7 @@ StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t 
       }
       ca = cg = Vec3::Zero();
       in_chunk = 0;
-      chunk_end += kChunk;
+      chunk_end += kChunkNs;
     }
     sa += m.accel;
     sg += m.gyro;
@@ -73,7 +81,7 @@ StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t 
     ++in_chunk;
     ++s.samples;
   }
-  if (s.samples < 10 || chunk_a.size() < 3) return s;
+  if (s.samples < kMinSamples || chunk_a.size() < kMinChunks) return s;
   const double n = static_cast<double>(s.samples);
   s.mean_accel = sa / n;
   const Vec3 mg = sg / n;
@@ -85,7 +93,7 @@ StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t 
     for (const Vec3& x : v) ss += (x - mean).squaredNorm();
     return std::sqrt(ss / static_cast<double>(v.size()));
   };
-  if (s.mean_accel.norm() < 5.0) return s;  // free fall or a broken log: no usable "up"
+  if (s.mean_accel.norm() < kMinSpecificForce) return s;
   // R_w_b maps the measured "up" (specific force at rest) onto world z; the
   // rotation is the smallest one (so yaw is left at its zero). In motion the
   // window's mean specific force is still mostly gravity (a swing of Δv over
