@@ -51,7 +51,7 @@ TEST(StaticInitialization, AtRestFindsGravityAndGyroBias) {
   // 200 samples the means are good to 0.02/√200 = 1.4e-3 m/s² (0.008 deg of
   // tilt) and 1.4e-4 rad/s; the bounds are five times that.
   const auto imu = samples(kTilted, bias, 1.0, [](double) { return Vec3::Zero(); }, 0.02, 2e-3);
-  const StaticInit s = staticInitialization(imu, 0, 1.0, 0.25, 0.05);
+  const StaticInit s = staticInitialization(imu, 0, 1.0, 0.1, 0.25, 0.05);
   EXPECT_TRUE(s.is_static);
   EXPECT_LT(tiltErrorDeg(s.R_w_b, kTilted), 0.04);
   EXPECT_LT((s.gyro_bias - bias).norm(), 7e-4);
@@ -67,7 +67,7 @@ TEST(StaticInitialization, InMotionStillGivesAnApproximateUpButNoGyroBias) {
   const double w = 2 * kPi * 0.8, amp = 0.15;
   const auto shake = [&](double t) { return Vec3(-amp * w * w * std::sin(w * t), 0, -amp * w * w * std::sin(w * t + 1.0)); };
   const auto imu = samples(kTilted, Vec3(0.0, 0.0, 0.08), 1.0, shake, 0.02, 2e-3);
-  const StaticInit s = staticInitialization(imu, 0, 1.0, 0.25, 0.05);
+  const StaticInit s = staticInitialization(imu, 0, 1.0, 0.1, 0.25, 0.05);
   EXPECT_FALSE(s.is_static);
   EXPECT_EQ(s.gyro_bias, Vec3::Zero());
   const double d = 2 * amp * w / 1.0;
@@ -79,7 +79,7 @@ TEST(StaticInitialization, InMotionStillGivesAnApproximateUpButNoGyroBias) {
 
 TEST(StaticInitialization, FreeFallGivesNoAttitude) {
   const auto imu = samples(kTilted, Vec3::Zero(), 1.0, [](double) { return Vec3(0, 0, -kG); }, 0.02, 2e-3);
-  const StaticInit s = staticInitialization(imu, 0, 1.0, 0.25, 0.05);
+  const StaticInit s = staticInitialization(imu, 0, 1.0, 0.1, 0.25, 0.05);
   EXPECT_FALSE(s.is_static);
   EXPECT_EQ(s.R_w_b.matrix(), Mat3::Identity());
 }

@@ -45,9 +45,6 @@ bool integrateGyro(const std::vector<ImuSample>& imu, std::int64_t t0, std::int6
 }
 
 namespace {
-// Motion is judged on 0.1 s means: rotor vibration (a standing drone reads
-// ~1 m/s² of spread per sample) averages out, real motion does not.
-constexpr std::int64_t kChunkNs = 100000000;
 // A spread needs at least three chunk means, and the mean reading ten samples.
 constexpr std::size_t kMinChunks = 3, kMinSamples = 10;
 // Below this mean specific force the IMU is falling or its log is broken:
@@ -55,14 +52,15 @@ constexpr std::size_t kMinChunks = 3, kMinSamples = 10;
 constexpr double kMinSpecificForce = 5.0;
 }  // namespace
 
-StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t t0, double window_s,
+StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t t0, double window_s, double chunk_s,
                                 double accel_std_max, double gyro_std_max) {
+  const std::int64_t chunk_ns = toNanoseconds(chunk_s);
   StaticInit s;
   const auto t1 = t0 + toNanoseconds(window_s);
   std::vector<Vec3> chunk_a, chunk_g;
   Vec3 sa = Vec3::Zero(), sg = Vec3::Zero(), ca = Vec3::Zero(), cg = Vec3::Zero();
   int in_chunk = 0;
-  std::int64_t chunk_end = t0 + kChunkNs;
+  std::int64_t chunk_end = t0 + chunk_ns;
   for (const auto& m : imu) {
     if (m.t_ns < t0 || m.t_ns > t1) continue;
     while (m.t_ns >= chunk_end) {
@@ -72,7 +70,7 @@ StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t 
       }
       ca = cg = Vec3::Zero();
       in_chunk = 0;
-      chunk_end += kChunkNs;
+      chunk_end += chunk_ns;
     }
     sa += m.accel;
     sg += m.gyro;

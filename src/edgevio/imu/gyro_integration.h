@@ -35,8 +35,9 @@ struct StaticInit {
 };
 
 /// Uses the IMU samples in [t0, t0 + window]; static when the spread of the
-/// 0.1 s means is below accel_std_max [m/s²] and gyro_std_max [rad/s].
-StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t t0_ns, double window_s,
+/// means over chunks of chunk_s is below accel_std_max [m/s²] and
+/// gyro_std_max [rad/s] (rotor vibration averages out over a chunk, motion does not).
+StaticInit staticInitialization(const std::vector<ImuSample>& imu, std::int64_t t0_ns, double window_s, double chunk_s,
                                 double accel_std_max, double gyro_std_max);
 
 }  // namespace edgevio::imu

@@ -61,8 +61,9 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
 
   // Static start: gravity-aligned initial orientation and gyro bias (METHOD.md §5).
   const std::int64_t t0 = sequence->frameTime(0);
-  const imu::StaticInit init = imu::staticInitialization(sequence->imu(), t0, config.tracking.static_init_window_s,
-                                                         config.tracking.static_accel_std_max, config.tracking.static_gyro_std_max);
+  const tracking::TrackingOptions& to = config.tracking;
+  const imu::StaticInit init = imu::staticInitialization(sequence->imu(), t0, to.static_init_window_s, to.static_chunk_s,
+                                                         to.static_accel_std_max, to.static_gyro_std_max);
   s.static_initialization = init.is_static;
   const tracking::EdgeTracker tracker(rect, config.vision, config.alignment, config.tracking);
   Odometry odometry(req.mode, config, tracker, rect.T_b_rect(0), sequence->calibration().imu, sequence->imu(), init, req.realtime);

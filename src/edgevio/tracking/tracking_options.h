@@ -12,7 +12,7 @@ struct TrackingOptions {
   int gyro_check_realign_levels;
   double imu_translation_check_m, rotation_prior_deg, rotation_prior_fraction;
   int lost_after_failures;
-  double static_init_window_s, static_accel_std_max, static_gyro_std_max;
+  double static_init_window_s, static_chunk_s, static_accel_std_max, static_gyro_std_max;
 
   TrackingOptions() { options::setDefaults(*this); }
   static const options::Table<TrackingOptions>& table();
@@ -47,10 +47,13 @@ inline const options::Table<TrackingOptions>& TrackingOptions::table() {
              "this many consecutive self-check failures: the run has lost track", atLeast(1)),
       number("static_init_window_s", &S::static_init_window_s, 1.0, "s", "IMU window at the start used for static initialisation",
              above(0)),
+      number("static_chunk_s", &S::static_chunk_s, 0.1, "s",
+             "static initialisation judges motion on means over chunks this long (vibration averages out, motion does not)",
+             above(0)),
       number("static_accel_std_max", &S::static_accel_std_max, 0.3, "m/s^2",
-             "the start is static if the spread of 0.1 s accelerometer means is below this", above(0)),
+             "the start is static if the spread of the chunks' accelerometer means is below this", above(0)),
       number("static_gyro_std_max", &S::static_gyro_std_max, 0.03, "rad/s",
-             "... and the spread of 0.1 s gyroscope means below this", above(0)),
+             "... and the spread of their gyroscope means below this", above(0)),
   }};
   return t;
 }
