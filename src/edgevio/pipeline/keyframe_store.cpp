@@ -6,7 +6,7 @@ void KeyframeStore::add(std::shared_ptr<const tracking::KeyframeData> data, cons
   // A keyframe outside the window served only as the current one.
   for (auto it = keyframes_.begin(); it != keyframes_.end();) it = it->second.in_window ? std::next(it) : keyframes_.erase(it);
   const std::int64_t t = data->t_ns;
-  keyframes_[t] = Keyframe{std::move(data), T_w_b, in_window, false};
+  keyframes_[t] = Keyframe{std::move(data), T_w_b, in_window};
 }
 
 const Keyframe* KeyframeStore::current() const { return keyframes_.empty() ? nullptr : &keyframes_.rbegin()->second; }
@@ -21,10 +21,6 @@ bool KeyframeStore::isKeyframe(std::int64_t t_ns) const {
   return it != keyframes_.end() && it->second.in_window;
 }
 
-void KeyframeStore::makeLoopReady(std::int64_t t_ns) {
-  if (const auto it = keyframes_.find(t_ns); it != keyframes_.end()) it->second.loop_ready = true;
-}
-
 void KeyframeStore::leftWindow(std::int64_t t_ns) {
   const auto it = keyframes_.find(t_ns);
   if (it == keyframes_.end()) return;
@@ -32,7 +28,6 @@ void KeyframeStore::leftWindow(std::int64_t t_ns) {
     keyframes_.erase(it);
   } else {
     it->second.in_window = false;
-    it->second.loop_ready = false;
   }
 }
 
@@ -41,12 +36,12 @@ void KeyframeStore::windowRestarted() {
   Keyframe current = std::move(keyframes_.rbegin()->second);
   const std::int64_t t = keyframes_.rbegin()->first;
   keyframes_.clear();
-  current.in_window = current.loop_ready = false;
+  current.in_window = false;
   keyframes_.emplace(t, std::move(current));
 }
 
 void KeyframeStore::enterWindow(std::int64_t t_ns) {
-  if (const auto it = keyframes_.find(t_ns); it != keyframes_.end()) it->second.in_window = it->second.loop_ready = true;
+  if (const auto it = keyframes_.find(t_ns); it != keyframes_.end()) it->second.in_window = true;
 }
 
 }  // namespace edgevio::pipeline

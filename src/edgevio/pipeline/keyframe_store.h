@@ -18,9 +18,6 @@ struct Keyframe {
   std::shared_ptr<const tracking::KeyframeData> data;
   geometry::SE3 T_w_b;     ///< the body pose it was made at (the window's estimate supersedes it while it is in the window)
   bool in_window = false;  ///< its state is in the estimator's window
-  /// Loop closure and back links may use it (set when loop closure first
-  /// sees it as the newest keyframe).
-  bool loop_ready = false;
 };
 
 class KeyframeStore {
@@ -33,23 +30,20 @@ class KeyframeStore {
   std::optional<std::int64_t> currentTime() const;
   /// Whether the window's state at t_ns is a keyframe.
   bool isKeyframe(std::int64_t t_ns) const;
-  /// Marks the keyframe at t_ns (if it is one) as ready for loop closure.
-  void makeLoopReady(std::int64_t t_ns);
 
   /// The state at t_ns left the window; its keyframe (if it is one) is
   /// dropped unless it is the current one.
   void leftWindow(std::int64_t t_ns);
   /// The window restarted: every keyframe has left it; all but the current one are dropped.
   void windowRestarted();
-  /// The window restarted at the current keyframe's state (t_ns): it is in
-  /// the window and ready for loop closure.
+  /// The window restarted at the current keyframe's state (t_ns): it is in the window.
   void enterWindow(std::int64_t t_ns);
 
-  /// The keyframes in the window that loop closure may use, oldest first.
+  /// The keyframes in the window, oldest first.
   template <class F>
-  void forEachLoopReady(F&& f) const {
+  void forEachInWindow(F&& f) const {
     for (const auto& [t, k] : keyframes_)
-      if (k.in_window && k.loop_ready) f(k);
+      if (k.in_window) f(k);
   }
 
  private:

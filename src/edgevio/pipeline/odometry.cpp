@@ -230,11 +230,9 @@ void Odometry::keyframeForRestart(std::int64_t t_ns, FrameRecord* r) {
 void Odometry::closeLoops(FrameRecord* r) {
   const Keyframe& latest = *keyframes_.current();
   const auto latest_state = estimator_->stateAt(latest.data->t_ns);
-  if (!latest_state) return;
-  keyframes_.makeLoopReady(latest.data->t_ns);
-  if (!mode_.loop) return;
+  if (!latest_state || !mode_.loop) return;
   std::vector<loop::LoopKeyframe> older;
-  keyframes_.forEachLoopReady([&](const Keyframe& k) {
+  keyframes_.forEachInWindow([&](const Keyframe& k) {
     if (k.data->t_ns != latest.data->t_ns) older.push_back({k.data, keyframePose(k) * T_b_c_});
   });
   r->loop_closure_ran = true;
@@ -254,7 +252,7 @@ void Odometry::linkBack(const SE3& T_w_b, FrameRecord* r) {
   if (config_.back_links.keyframes == 0) return;
   const Keyframe& latest = *keyframes_.current();
   std::vector<loop::LoopKeyframe> previous;  // newest first, at the window's estimates
-  keyframes_.forEachLoopReady([&](const Keyframe& k) {
+  keyframes_.forEachInWindow([&](const Keyframe& k) {
     if (k.data->t_ns < latest.data->t_ns) previous.insert(previous.begin(), {k.data, keyframePose(k) * T_b_c_});
   });
   // The tracker's pose of the new keyframe carries its tracking link, so the
