@@ -61,7 +61,6 @@ RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOp
     r.realtime_factor = number("realtime_factor", kNaN);
     r.peak_rss_mb = number("peak_rss_mb", kNaN);
     r.skip = static_cast<int>(number("skip", 0.0));
-    if (r.skip > 0) r.mode += ", skip " + std::to_string(r.skip);
     if (scalarOr(summary, "failed", "false") == "true") {
       r.failure = "run reported failure (summary.json: failed = true)";
       const std::string why = scalarOr(summary, "failure", "");
@@ -138,7 +137,7 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
   for (std::size_t i = 0; i < options.rpe_deltas_m.size(); ++i) out << "---:|";
   out << "---:|---:|---:|\n";
   for (const auto& r : runs) {
-    out << "| " << r.sequence << " | " << r.mode << " | ";
+    out << "| " << r.sequence << " | " << r.mode << (r.skip > 0 ? ", skip " + std::to_string(r.skip) : "") << " | ";
     if (!r.ok) {
       out << "**FAILED**: " << r.failure << " | - | - | - | - |";
       for (std::size_t i = 0; i < options.rpe_deltas_m.size(); ++i) out << " - |";
