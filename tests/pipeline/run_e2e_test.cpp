@@ -149,18 +149,30 @@ void medianLinkErrors(const std::string& frames_csv, const io::Trajectory& gt, d
   *rot_deg = er[er.size() / 2];
 }
 
+/// A run of the 4 s render in `mode`, made twice: the second must repeat the
+/// first bit for bit. Returns the first's summary and evaluation; `out` keeps its folder.
+struct RepeatedRun {
+  RunSummary summary;
+  eval::EvalResult eval;
+};
+RepeatedRun runTwice(Mode mode, const TempDir& out) {
+  TempDir again;
+  RepeatedRun r;
+  r.summary = run(request(simulated().dataset, out.path(), mode), Config{});
+  run(request(simulated().dataset, again.path(), mode), Config{});
+  EXPECT_FALSE(r.summary.failed) << r.summary.failure;
+  EXPECT_EQ(test::readFile(out.file("trajectory.csv")), test::readFile(again.file("trajectory.csv"))) << "not bit-for-bit repeatable";
+  r.eval = eval::evaluate(io::readTrajectory(simulated().dataset + "/mav0/state_groundtruth_estimate0/data.csv"),
+                          io::readTrajectory(out.file("trajectory_tum.txt")), eval::EvalOptions{});
+  std::printf("4 s figure8 render, %s: ATE %.4f m (se3), ARE %.4f deg/m, %.4f m/m, %zu keyframes\n", modeName(mode).c_str(),
+              r.eval.ate_rmse_m, r.eval.are_rot_deg_per_m, r.eval.are_trans_m_per_m, r.summary.keyframes);
+  return r;
+}
+
 TEST(Run, ShortRenderedSequenceIsAccurateAndDeterministic) {
-  TempDir a, b;
-  const RunSummary s = run(request(simulated().dataset, a.path(), kEdgeOnly), Config{});
-  run(request(simulated().dataset, b.path(), kEdgeOnly), Config{});
-  EXPECT_FALSE(s.failed) << s.failure;
+  TempDir a;
+  const auto [s, r] = runTwice(kEdgeOnly, a);
   EXPECT_EQ(s.frames, 81u);
-  EXPECT_EQ(test::readFile(a.file("trajectory_tum.txt")), test::readFile(b.file("trajectory_tum.txt"))) << "not bit-for-bit repeatable";
-  const eval::EvalResult r =
-      eval::evaluate(io::readTrajectory(simulated().dataset + "/mav0/state_groundtruth_estimate0/data.csv"),
-                     io::readTrajectory(a.file("trajectory_tum.txt")), eval::EvalOptions{});
-  std::printf("4 s figure8 render, edge-only: ATE %.4f m (se3), ARE %.4f deg/m, %.4f m/m, %zu keyframes\n", r.ate_rmse_m,
-              r.are_rot_deg_per_m, r.are_trans_m_per_m, s.keyframes);
   // The same render with seeds 1-12 (scene, textures, noise): 1.3-14.1 mm
   // (4.6 mm for this seed, 9). A change that puts this scene beyond the worst
   // of them is a change to look at.
@@ -181,17 +193,9 @@ TEST(Run, ShortRenderedSequenceIsAccurateAndDeterministic) {
 }
 
 TEST(Run, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
-  TempDir a, b;
-  const RunSummary s = run(request(simulated().dataset, a.path(), kEdgeImu), Config{});
-  run(request(simulated().dataset, b.path(), kEdgeImu), Config{});
-  EXPECT_FALSE(s.failed) << s.failure;
+  TempDir a;
+  const auto [s, r] = runTwice(kEdgeImu, a);
   EXPECT_EQ(s.estimator_resets, 0u);
-  EXPECT_EQ(test::readFile(a.file("trajectory.csv")), test::readFile(b.file("trajectory.csv"))) << "not bit-for-bit repeatable";
-  const eval::EvalResult r =
-      eval::evaluate(io::readTrajectory(simulated().dataset + "/mav0/state_groundtruth_estimate0/data.csv"),
-                     io::readTrajectory(a.file("trajectory_tum.txt")), eval::EvalOptions{});
-  std::printf("4 s figure8 render, edge+imu: ATE %.4f m (se3), ARE %.4f deg/m, %.4f m/m\n", r.ate_rmse_m,
-              r.are_rot_deg_per_m, r.are_trans_m_per_m);
   // Seeds 1-12 of this render: 1.2-3.4 mm (1.7 mm for this one), as above.
   EXPECT_LT(r.ate_rmse_m, 0.0035);
   const std::string csv = test::readFile(a.file("frames.csv"));

@@ -36,6 +36,14 @@ void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns, int lost_after)
   }
 }
 
+namespace {
+void strings(JsonWriter& j, const std::vector<std::string>& v) {
+  j.beginArray();
+  for (const std::string& x : v) j.value(x);
+  j.endArray();
+}
+}  // namespace
+
 const std::vector<SummaryField>& summaryFields() {
   using S = RunSummary;
   using J = JsonWriter;
@@ -69,18 +77,9 @@ const std::vector<SummaryField>& summaryFields() {
       {"wall_s", "the run's wall time [s]", [](J& j, const S& s) { j.value(s.wall_s); }},
       {"realtime_factor", "duration_s / wall_s", [](J& j, const S& s) { j.value(s.realtime_factor); }},
       {"peak_rss_mb", "peak resident memory of the process [MB]", [](J& j, const S& s) { j.value(s.peak_rss_mb); }},
-      {"events", "restarts, IMU gaps, unreadable images, each as \"t = … s: what\"",
-       [](J& j, const S& s) {
-         j.beginArray();
-         for (const auto& e : s.events) j.value(e);
-         j.endArray();
-       }},
+      {"events", "restarts, IMU gaps, unreadable images, each as \"t = … s: what\"", [](J& j, const S& s) { strings(j, s.events); }},
       {"warnings", "the dataset's warnings (missing images, IMU gaps, unpaired frames)",
-       [](J& j, const S& s) {
-         j.beginArray();
-         for (const auto& w : s.warnings) j.value(w);
-         j.endArray();
-       }},
+       [](J& j, const S& s) { strings(j, s.warnings); }},
   };
   return fields;
 }
