@@ -52,7 +52,7 @@ class FakeTracker final : public tracking::Tracker {
     const std::int64_t span = frame.t_ns - keyframe.t_ns;
     t.alignment.self_check_passed = span <= max_span_ns;
     if (!t.passed()) return t;
-    sim::Rng rng(static_cast<std::uint64_t>(frame.t_ns * 31 + keyframe.t_ns));
+    sim::Rng rng(sim::hashCombine(static_cast<std::uint64_t>(frame.t_ns), static_cast<std::uint64_t>(keyframe.t_ns)));
     Vec6 noise;
     for (int k = 0; k < 6; ++k) noise[k] = rng.gaussian() * (k < 3 ? sigma_t : sigma_r);
     SE3 T_nr = (sc_.pose(frame.t_ns) * T_b_c_).inverse() * (sc_.pose(keyframe.t_ns) * T_b_c_) * SE3::exp(noise);
