@@ -19,23 +19,41 @@ int main(int argc, char** argv) {
   app.add_flag("--print-config-reference", print_config_reference, "Print the configuration reference (Markdown) and exit");
   app.add_flag("--print-outputs-reference", print_outputs_reference, "Print the reference of a run folder's files (Markdown) and exit");
 
+  // The options of a ROS bag input, for every subcommand that reads one.
+  // The dataset to read (first positional) and, for a bag, its calibration and topics.
+  const auto sequenceOptions = [](CLI::App* cmd, std::string* dataset, std::string* calib, io::BagTopics* topics) {
+    cmd->add_option("dataset", *dataset, "ASL folder (holding mav0/) or ROS 1 bag")->required();
+    cmd->add_option("--calib", *calib, "A bag's calibration: Kalibr camchain-imucam.yaml or an ASL folder (default: beside the bag)");
+    cmd->add_option("--cam0-topic", topics->cam0, "A bag's left image topic (default: found by type and name)");
+    cmd->add_option("--cam1-topic", topics->cam1, "A bag's right image topic");
+    cmd->add_option("--imu-topic", topics->imu, "A bag's IMU topic (default: the one sensor_msgs/Imu topic)");
+    cmd->add_option("--gt-topic", topics->groundtruth, "A bag's ground-truth topic (PoseStamped, TransformStamped or Odometry)");
+  };
+
   cli::InfoArgs info;
-  auto* info_cmd = app.add_subcommand("info", "Describe an EuRoC/ASL dataset folder as one JSON object");
-  info_cmd->add_option("dataset", info.dataset, "Dataset folder (holding mav0/)")->required();
+  auto* info_cmd = app.add_subcommand("info", "Describe a dataset (ASL folder or ROS bag) as one JSON object");
+  sequenceOptions(info_cmd, &info.dataset, &info.calib, &info.topics);
   info_cmd->add_option("--config", info.config, "Config file (YAML; default: built-in defaults)");
 
   cli::RunArgs run;
   auto* run_cmd = app.add_subcommand("run", "Estimate a trajectory from a dataset");
-  run_cmd->add_option("dataset", run.dataset, "Dataset folder (holding mav0/)")->required();
+  sequenceOptions(run_cmd, &run.dataset, &run.calib, &run.topics);
   run_cmd->add_option("--out", run.out, "Output folder")->required();
   run_cmd->add_option("--mode", run.mode, "edge+imu+loop (default, the full system) | edge+imu | edge+loop | edge-only");
   run_cmd->add_option("--config", run.config, "Config file (YAML)");
   run_cmd->add_option("--skip", run.skip, "Keep every (K+1)-th stereo frame (the IMU is untouched)");
   run_cmd->add_flag("--realtime", run.realtime, "Play the dataset at sensor rate, dropping frames when behind");
 
+  cli::ConvertArgs conv;
+  auto* convert_cmd = app.add_subcommand("convert", "Write a dataset (ASL folder or bag) as a ROS 1 bag, Kalibr calibration beside it");
+  sequenceOptions(convert_cmd, &conv.dataset, &conv.calib, &conv.topics);
+  convert_cmd->add_option("out", conv.out, "The bag to write (OUT.bag)")->required();
+  convert_cmd->add_option("--compression", conv.compression, "Chunk compression: none (default) | bz2 | lz4");
+  convert_cmd->add_option("--images", conv.images, "raw (sensor_msgs/Image, default) | png (sensor_msgs/CompressedImage)");
+
   cli::EvalArgs ev;
   auto* eval_cmd = app.add_subcommand("eval", "Evaluate an estimated trajectory against ground truth (ATE, RPE, ARE)");
-  eval_cmd->add_option("--gt", ev.gt, "Ground-truth trajectory (TUM or EuRoC CSV)");
+  eval_cmd->add_option("--gt", ev.gt, "Ground-truth trajectory (TUM, EuRoC CSV, or a ROS bag's pose topic)");
   eval_cmd->add_option("--est", ev.est, "Estimated trajectory (TUM or EuRoC CSV)");
   eval_cmd->add_option("--results", ev.results_dir, "Evaluate every run folder under DIR; write report.md and report.csv");
   eval_cmd->add_option("--align", ev.align, "Alignment: se3 | sim3 | posyaw | none (default: config, se3)")
@@ -49,14 +67,14 @@ int main(int argc, char** argv) {
   cli::SimulateArgs sim;
   auto* sim_cmd = app.add_subcommand("simulate", "Render a synthetic stereo+IMU sequence as an EuRoC ASL folder");
   sim_cmd->add_option("--out", sim.out, "Output folder (mav0/ is written inside)")->required();
-  auto* traj_opt = sim_cmd->add_option("--trajectory", sim.trajectory, "Trajectory to follow (TUM or EuRoC ground truth)");
+  auto* traj_opt = sim_cmd->add_option("--trajectory", sim.trajectory, "Trajectory to follow (TUM, EuRoC ground truth, or a ROS bag's pose topic)");
   auto* scen_opt = sim_cmd->add_option("--scenario", sim.scenario, "Built-in motion")
                        ->check(CLI::IsMember({"hover", "figure8", "aggressive", "throw"}));
   traj_opt->excludes(scen_opt);
   sim_cmd->add_option("--start", sim.start_s, "Start, seconds after the trajectory's first pose");
   sim_cmd->add_option("--duration", sim.duration_s, "Length in seconds (default: whole file, or sim.scenario_duration_s)");
   sim_cmd->add_option("--seed", sim.seed, "Seed of everything random (scene, noise, drops)");
-  sim_cmd->add_option("--imu", sim.imu, "synth (from the trajectory) or a real imu0 data.csv to replay");
+  sim_cmd->add_option("--imu", sim.imu, "synth (from the trajectory), or a real imu0 data.csv or ROS bag to replay");
   sim_cmd->add_option("--noise", sim.noise, "on|off: IMU noise and biases, image sensor noise")
       ->check(CLI::IsMember({"on", "off"}));
   sim_cmd->add_option("--blur-ms", sim.blur_ms, "Exposure time for motion blur in ms (0: none)");
@@ -97,6 +115,7 @@ int main(int argc, char** argv) {
   if (*info_cmd) return cli::info(info, std::cout, std::cerr);
   if (*eval_cmd) return cli::eval(ev, std::cout, std::cerr);
   if (*run_cmd) return cli::run(run, std::cout, std::cerr);
+  if (*convert_cmd) return cli::convert(conv, std::cout, std::cerr);
   if (*sim_cmd) return cli::simulate(sim, std::cout, std::cerr);
   if (*bench_cmd) return cli::bench(bench, std::cout, std::cerr);
   if (*demo_cmd) return cli::demo(demo, std::cout, std::cerr);

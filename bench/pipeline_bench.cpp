@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   const std::string run_dir = (work / ("run-" + mode)).string();
   pipeline::RunSummary s;
   try {
-    s = pipeline::run({dataset, run_dir, *parsed_mode, 0, false}, Config{});
+    s = pipeline::run({dataset, run_dir, *parsed_mode}, Config{});
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds edgevio and runs every test (the README's test command; .ci/run calls it).
-#  1. installs missing Debian packages (scripts/setup.sh, idempotent);
+#  1. installs missing Debian packages (scripts/setup.sh --test, idempotent);
 #  2. Release build with warnings as errors, then all tests (ctest);
 #  3. address+undefined sanitizer build, then the unit tests again.
 # Set EDGEVIO_SKIP_SANITIZE=1 to skip step 3 during development.
@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
 
-bash scripts/setup.sh
+bash scripts/setup.sh --test
 
 echo "== Release build (-Werror) =="
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DEDGEVIO_WERROR=ON >/dev/null

@@ -8,10 +8,16 @@
 namespace edgevio::cli {
 namespace {
 
+InfoArgs infoOf(const std::string& dataset) {
+  InfoArgs a;
+  a.dataset = dataset;
+  return a;
+}
+
 TEST(InfoCommand, RealMicroFolderFigures) {
   EDGEVIO_REQUIRE_SHARED_DATA("euroc/V1_01_easy_micro");
   std::ostringstream out, err;
-  ASSERT_EQ(info({data_path, ""}, out, err), kExitOk) << err.str();
+  ASSERT_EQ(info(infoOf(data_path), out, err), kExitOk) << err.str();
   const std::string j = out.str();
   EXPECT_NE(j.find("\"stereo_pairs\": 95,"), std::string::npos) << j;
   EXPECT_NE(j.find("\"imu_samples\": 29120,"), std::string::npos) << j;
@@ -23,12 +29,12 @@ TEST(InfoCommand, RealMicroFolderFigures) {
 TEST(InfoCommand, BadInputIsExitOneWithMessage) {
   test::TempDir dir;
   std::ostringstream out, err;
-  EXPECT_EQ(info({dir.path() + "/missing", ""}, out, err), kExitError);
+  EXPECT_EQ(info(infoOf(dir.path() + "/missing"), out, err), kExitError);
   EXPECT_NE(err.str().find("not found"), std::string::npos);
   const std::string root = test::writeMiniDataset(dir);
   dir.write("mav0/imu0/data.csv", "#\n1,2,3\n");
   std::ostringstream out2, err2;
-  EXPECT_EQ(info({root, ""}, out2, err2), kExitError);
+  EXPECT_EQ(info(infoOf(root), out2, err2), kExitError);
   EXPECT_NE(err2.str().find("imu0/data.csv:2"), std::string::npos) << err2.str();
 }
 

@@ -52,6 +52,9 @@ std::string writeMiniDataset(const TempDir& dir, const MiniDatasetSpec& spec) {
     for (int i = 0; i < spec.frames; ++i) {
       const std::int64_t t = spec.t0_ns + i * spec.frame_dt_ns;
       cv::Mat img(spec.height, spec.width, CV_8UC1, cv::Scalar(40 + 10 * i + 5 * cam));
+      if (spec.patterned)
+        for (int y = 0; y < spec.height; ++y)
+          for (int x = 0; x < spec.width; ++x) img.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(7 * x + 13 * y + 10 * i + 5 * cam);
       cv::imwrite((c / "data" / (std::to_string(t) + ".png")).string(), img);
       csv << t << "," << t << ".png\n";
     }

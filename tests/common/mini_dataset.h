@@ -14,6 +14,7 @@ struct MiniDatasetSpec {
   std::int64_t t0_ns = 1000000000;
   std::int64_t frame_dt_ns = 50000000;  // 20 Hz
   std::int64_t imu_dt_ns = 5000000;     // 200 Hz
+  bool patterned = false;  ///< images with a different value at every pixel (else one grey level per image)
 };
 
 /// Writes <dir>/mav0/... and returns the dataset root (dir).

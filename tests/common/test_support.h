@@ -5,6 +5,9 @@
 #include <Eigen/Core>
 #include <functional>
 #include <string>
+#include <vector>
+
+#include "edgevio/common/error.h"
 
 namespace edgevio::test {
 
@@ -37,6 +40,18 @@ class TempDir {
 
 /// The whole file as bytes ("" if it cannot be read).
 std::string readFile(const std::string& path);
+
+/// Runs f, expecting an InputError whose message contains every fragment.
+template <class F>
+void expectInputError(F&& f, const std::vector<std::string>& fragments) {
+  try {
+    f();
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    for (const auto& frag : fragments)
+      EXPECT_NE(std::string(e.what()).find(frag), std::string::npos) << "'" << frag << "' not in: " << e.what();
+  }
+}
 
 /// Central-difference Jacobian of f: R^n → R^m at x, step h.
 Eigen::MatrixXd numericJacobian(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f,

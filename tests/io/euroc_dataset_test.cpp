@@ -13,19 +13,8 @@
 namespace edgevio::io {
 namespace {
 
+using test::expectInputError;
 using test::TempDir;
-
-/// Runs f, expecting an InputError whose message contains every fragment.
-template <class F>
-void expectInputError(F&& f, const std::vector<std::string>& fragments) {
-  try {
-    f();
-    ADD_FAILURE() << "expected an InputError";
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    for (const auto& frag : fragments) EXPECT_NE(msg.find(frag), std::string::npos) << "'" << frag << "' not in: " << msg;
-  }
-}
 
 std::size_t countLoadable(EurocDataset& d) {
   std::size_t n = 0;

@@ -17,6 +17,8 @@
 #include "edgevio/common/error.h"
 #include "edgevio/common/table_reader.h"
 #include "edgevio/eval/metrics.h"
+#include "edgevio/io/bag_export.h"
+#include "edgevio/io/euroc_dataset.h"
 #include "edgevio/io/imu_io.h"
 #include "edgevio/io/trajectory_io.h"
 #include "edgevio/pipeline/mode.h"
@@ -30,7 +32,7 @@ using test::TempDir;
 const Mode kEdgeOnly{false, false}, kEdgeLoop{false, true}, kEdgeImu{true, false}, kFull{true, true};
 
 RunRequest request(const std::string& dataset, const std::string& out, Mode mode, int skip = 0) {
-  return {dataset, out, mode, skip, false};
+  return RunRequest(dataset, out, mode, skip);
 }
 
 
@@ -335,6 +337,36 @@ TEST(Run, SkipKeepsEveryKPlusOneFrame) {
   const RunSummary s = run(request(simulated().dataset, out.path(), kEdgeOnly, 3), Config{});
   EXPECT_EQ(s.frames, 21u);  // 81 frames, every 4th
   EXPECT_FALSE(s.failed) << s.failure;
+}
+
+// --- One pipeline, two sources: a bag runs as the folder it was made from ----------
+
+/// Runs `folder` and the bag made from it (its calibration read from the
+/// folder) in every mode: the trajectories must be the same, bit for bit.
+void expectBagRunsAsFolder(const std::string& folder, const io::BagExportOptions& format) {
+  TempDir bag_dir;
+  io::EurocDataset source(folder, io::DatasetOptions{});
+  const std::string bag = bag_dir.file("sequence.bag");
+  io::exportBag(source, bag, format);
+  for (const Mode mode : {kEdgeOnly, kEdgeLoop, kEdgeImu, kFull}) {
+    TempDir a, b;
+    run(request(folder, a.path(), mode), Config{});
+    RunRequest from_bag = request(bag, b.path(), mode);
+    from_bag.calib = folder;
+    const RunSummary s = run(from_bag, Config{});
+    EXPECT_GT(s.frames, 0u);
+    EXPECT_EQ(test::readFile(a.file("trajectory.csv")), test::readFile(b.file("trajectory.csv"))) << modeName(mode);
+    EXPECT_FALSE(test::readFile(b.file("trajectory.csv")).empty());
+  }
+}
+
+TEST(Run, ABagOfTheRealMicroClipRunsAsItsFolderInEveryMode) {
+  EDGEVIO_REQUIRE_SHARED_DATA("euroc/V1_01_easy_micro");
+  expectBagRunsAsFolder(data_path, {io::BagCompression::kNone, io::BagImages::kRaw});
+}
+
+TEST(Run, ABagOfARenderRunsAsItsFolderInEveryMode) {
+  expectBagRunsAsFolder(simulated().dataset, {io::BagCompression::kLz4, io::BagImages::kPng});
 }
 
 }  // namespace

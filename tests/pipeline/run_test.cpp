@@ -23,11 +23,11 @@ TEST(Run, BadInputIsAnError) {
   TempDir out;
   const std::string mini = test::writeMiniDataset(out);
   const Mode edge_only{false, false};
-  EXPECT_THROW(run({out.file("missing"), out.file("o"), edge_only, 0, false}, Config{}), InputError);
-  EXPECT_THROW(run({mini, out.file("o"), edge_only, -1, false}, Config{}), InputError);
+  EXPECT_THROW(run({out.file("missing"), out.file("o"), edge_only}, Config{}), InputError);
+  EXPECT_THROW(run({mini, out.file("o"), edge_only, -1}, Config{}), InputError);
   Config bad;
   bad.alignment.max_iterations_per_level = 0;
-  EXPECT_THROW(run({mini, out.file("o"), edge_only, 0, false}, bad), InputError);
+  EXPECT_THROW(run({mini, out.file("o"), edge_only}, bad), InputError);
 }
 
 TEST(Mode, NamesAreThePapersAndRoundTrip) {

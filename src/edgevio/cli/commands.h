@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "edgevio/eval/eval_options.h"
+#include "edgevio/io/sequence.h"
 
 namespace edgevio::cli {
 
@@ -16,8 +17,10 @@ constexpr int kExitError = 1;
 struct InfoArgs {
   std::string dataset;
   std::string config;  ///< optional config file
+  std::string calib;   ///< a bag's calibration
+  io::BagTopics topics;
 };
-/// `edgevio info DATASET`: one JSON object describing the folder (issue #2).
+/// `edgevio info DATA`: one JSON object describing an ASL folder or a bag.
 int info(const InfoArgs& args, std::ostream& out, std::ostream& err);
 
 struct EvalArgs {
@@ -49,9 +52,19 @@ struct RunArgs {
   std::string dataset, out, mode = "edge+imu+loop", config;  ///< default: the full system
   int skip = 0;
   bool realtime = false;
+  std::string calib;  ///< a bag's calibration
+  io::BagTopics topics;
 };
 /// `edgevio run`: estimate a trajectory (issues #5-#8).
 int run(const RunArgs& args, std::ostream& out, std::ostream& err);
+
+struct ConvertArgs {
+  std::string dataset, out, compression = "none", images = "raw", calib;
+  io::BagTopics topics;
+};
+/// `edgevio convert DATA OUT.bag`: any sequence edgevio reads as a ROS 1 bag,
+/// with Kalibr's calibration files beside it.
+int convert(const ConvertArgs& args, std::ostream& out, std::ostream& err);
 
 struct DemoArgs {
   std::string out = "out/demo";

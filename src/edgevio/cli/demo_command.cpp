@@ -42,7 +42,7 @@ int demo(const DemoArgs& a, std::ostream& out, std::ostream& err) {
     Progress p("frames", Progress::stderrIsTerminal());
     pipeline::RunObserver observer;
     observer.progress = [&](std::size_t d, std::size_t t, double q) { p.update(d, t, q); };
-    const pipeline::RunSummary s = pipeline::run({data.string(), run.string(), full_system, 0, false}, config, observer);
+    const pipeline::RunSummary s = pipeline::run({data.string(), run.string(), full_system}, config, observer);
     // 3. Evaluate.
     out << "[3/3] evaluating against the ground truth\n\n";
     const eval::EvalResult e =

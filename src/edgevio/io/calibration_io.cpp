@@ -87,12 +87,14 @@ StereoRig loadKalibrCalibration(const std::string& camchain_yaml, const std::str
     const YAML::Node cam = yamlRequire(root, "cam" + std::to_string(i), camchain_yaml);
     readIntrinsics(cam, camchain_yaml, "distortion_model", "distortion_coeffs", &rig.cam[i]);
     rig.T_b_c[i] = geometry::SE3::fromMatrix(yamlMatrix4(cam, "T_cam_imu", camchain_yaml)).inverse();
+    if (cam["rostopic"] && cam["rostopic"].IsScalar()) rig.topic[i] = cam["rostopic"].Scalar();
   }
   if (!imu_yaml.empty()) {
     const YAML::Node imu_root = loadYamlFile(imu_yaml);
     const YAML::Node imu = yamlRequire(imu_root, "imu0", imu_yaml);
     readImuNoise(imu, imu_yaml, &rig.imu);
     rig.imu.rate_hz = yamlDouble(imu, "update_rate", imu_yaml);
+    if (imu["rostopic"] && imu["rostopic"].IsScalar()) rig.imu_topic = imu["rostopic"].Scalar();
   }
   return rig;
 }
@@ -125,6 +127,30 @@ void writeEurocCalibration(const std::string& mav0_dir, const StereoRig& rig) {
     << "gyroscope_random_walk: " << rig.imu.gyro_random_walk << "       # [ rad / s^2 / sqrt(Hz) ]\n"
     << "accelerometer_noise_density: " << rig.imu.accel_noise_density << "  # [ m / s^2 / sqrt(Hz) ]\n"
     << "accelerometer_random_walk: " << rig.imu.accel_random_walk << "    # [ m / s^3 / sqrt(Hz) ]\n";
+}
+
+void writeKalibrCalibration(const std::string& camchain_yaml, const std::string& imu_yaml, const StereoRig& rig) {
+  std::ofstream f(camchain_yaml);
+  if (!f) throw InputError(camchain_yaml, 0, "cannot write calibration file");
+  f << std::setprecision(17);
+  for (int i = 0; i < 2; ++i) {
+    const CameraModel& c = rig.cam[i];
+    const Mat4 T = rig.T_b_c[i].inverse().matrix();
+    const char* distortion = c.distortion == camera::Distortion::kEquidistant ? "equidistant"
+                             : c.distortion == camera::Distortion::kNone      ? "none"
+                                                                              : "radtan";
+    f << "cam" << i << ":\n  camera_model: pinhole\n  intrinsics: [" << c.fx << ", " << c.fy << ", " << c.cx << ", " << c.cy
+      << "]\n  distortion_model: " << distortion << "\n  distortion_coeffs: [" << c.coeffs[0] << ", " << c.coeffs[1] << ", "
+      << c.coeffs[2] << ", " << c.coeffs[3] << "]\n  resolution: [" << c.width << ", " << c.height << "]\n  rostopic: '"
+      << rig.topic[i] << "'\n  T_cam_imu:\n";
+    for (int r = 0; r < 4; ++r) f << "  - [" << T(r, 0) << ", " << T(r, 1) << ", " << T(r, 2) << ", " << T(r, 3) << "]\n";
+  }
+  std::ofstream g(imu_yaml);
+  if (!g) throw InputError(imu_yaml, 0, "cannot write calibration file");
+  g << std::setprecision(17) << "imu0:\n  accelerometer_noise_density: " << rig.imu.accel_noise_density
+    << "\n  accelerometer_random_walk: " << rig.imu.accel_random_walk << "\n  gyroscope_noise_density: " << rig.imu.gyro_noise_density
+    << "\n  gyroscope_random_walk: " << rig.imu.gyro_random_walk << "\n  rostopic: '" << rig.imu_topic
+    << "'\n  update_rate: " << rig.imu.rate_hz << "\n";
 }
 
 StereoRig eurocDefaultRig() {

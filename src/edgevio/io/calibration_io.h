@@ -20,6 +20,9 @@ camera::StereoRig loadCalibration(const std::string& path);
 /// Writes mav0/{cam0,cam1,imu0}/sensor.yaml in the EuRoC format (folders are created).
 void writeEurocCalibration(const std::string& mav0_dir, const camera::StereoRig& rig);
 
+/// Writes a Kalibr camchain-imucam.yaml and imu.yaml (with the rig's topics).
+void writeKalibrCalibration(const std::string& camchain_yaml, const std::string& imu_yaml, const camera::StereoRig& rig);
+
 /// The EuRoC MAV rig (V1_01 calibration), the simulator's default.
 camera::StereoRig eurocDefaultRig();
 

@@ -66,24 +66,11 @@ std::vector<ImageRecord> EurocDataset::readImageList(int cam) {
 }
 
 void EurocDataset::pairFrames(const std::vector<ImageRecord>& left, const std::vector<ImageRecord>& right) {
-  const auto tol = toNanoseconds(options_.stereo_sync_tolerance_s);
-  std::size_t i = 0, j = 0;
-  while (i < left.size() && j < right.size()) {
-    const std::int64_t d = left[i].t_ns - right[j].t_ns;
-    if (std::llabs(d) <= tol) {
-      pairs_.push_back({left[i].t_ns, left[i], right[j]});
-      ++i;
-      ++j;
-    } else if (d < 0) {
-      ++unpaired_[0];
-      ++i;
-    } else {
-      ++unpaired_[1];
-      ++j;
-    }
-  }
-  unpaired_[0] += left.size() - i;
-  unpaired_[1] += right.size() - j;
+  std::vector<std::int64_t> tl, tr;
+  for (const ImageRecord& r : left) tl.push_back(r.t_ns);
+  for (const ImageRecord& r : right) tr.push_back(r.t_ns);
+  for (const auto& [i, j] : pairStereo(tl, tr, toNanoseconds(options_.stereo_sync_tolerance_s), unpaired_))
+    pairs_.push_back({left[i].t_ns, left[i], right[j]});
   for (int cam = 0; cam < 2; ++cam)
     if (unpaired_[cam] > 0)
       warnings_.push_back("cam" + std::to_string(cam) + ": " + std::to_string(unpaired_[cam]) +
@@ -147,8 +134,26 @@ std::function<cv::Mat()> EurocDataset::rightImageLoader(std::size_t i) const {
   };
 }
 
-std::unique_ptr<Sequence> openSequence(const std::string& path, const DatasetOptions& options) {
-  return std::make_unique<EurocDataset>(path, options);
+std::vector<std::pair<std::size_t, std::size_t>> pairStereo(const std::vector<std::int64_t>& left,
+                                                            const std::vector<std::int64_t>& right, std::int64_t tol,
+                                                            std::size_t unpaired[2]) {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  std::size_t i = 0, j = 0;
+  while (i < left.size() && j < right.size()) {
+    const std::int64_t d = left[i] - right[j];
+    if (std::llabs(d) <= tol) {
+      pairs.emplace_back(i++, j++);
+    } else if (d < 0) {
+      ++unpaired[0];
+      ++i;
+    } else {
+      ++unpaired[1];
+      ++j;
+    }
+  }
+  unpaired[0] += left.size() - i;
+  unpaired[1] += right.size() - j;
+  return pairs;
 }
 
 std::optional<StereoImages> EurocDataset::loadStereo(std::size_t i) {

@@ -60,6 +60,7 @@ class EurocDataset final : public Sequence {
   std::function<cv::Mat()> rightImageLoader(std::size_t i) const override;
   const std::vector<std::string>& warnings() const override { return warnings_; }
   std::size_t unreadableImages() const override { return unreadable_[0] + unreadable_[1]; }
+  std::size_t cameraFrames(int cam) const override { return rows_[cam] - unreadable_[cam]; }
 
   const std::vector<StereoRecord>& stereoPairs() const { return pairs_; }
   const std::string& mav0() const { return mav0_; }

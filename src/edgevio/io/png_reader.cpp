@@ -38,6 +38,10 @@ cv::Mat readPngGray8(const std::string& path) {
   std::vector<std::uint8_t> file(static_cast<std::size_t>(size));
   in.seekg(0);
   if (!in.read(reinterpret_cast<char*>(file.data()), size)) return {};
+  return decodePngGray8(file);
+}
+
+cv::Mat decodePngGray8(const std::vector<std::uint8_t>& file) {
   static constexpr std::uint8_t kSignature[8] = {137, 80, 78, 71, 13, 10, 26, 10};
   if (file.size() < 8 || !std::equal(kSignature, kSignature + 8, file.begin())) return {};
 

@@ -7,12 +7,16 @@
 // exactly what cv::imread gives.
 #include <opencv2/core.hpp>
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace edgevio::io {
 
 /// The image as CV_8UC1, or empty when the file is not a well-formed 8-bit
 /// greyscale non-interlaced PNG (the caller falls back to a general decoder).
 cv::Mat readPngGray8(const std::string& path);
+/// The same for a PNG file's bytes in memory (a ROS CompressedImage's data).
+cv::Mat decodePngGray8(const std::vector<std::uint8_t>& file);
 
 }  // namespace edgevio::io

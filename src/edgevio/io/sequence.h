@@ -45,10 +45,32 @@ class Sequence {
   virtual const std::vector<std::string>& warnings() const = 0;
   /// Images that were missing or did not decode so far.
   virtual std::size_t unreadableImages() const = 0;
+  /// Readable images of camera `cam` (0 left, 1 right), paired or not.
+  virtual std::size_t cameraFrames(int cam) const = 0;
 };
 
-/// Opens a sequence: an EuRoC/ASL folder (the folder holding mav0/, or mav0
-/// itself). Throws InputError naming what is wrong.
-std::unique_ptr<Sequence> openSequence(const std::string& path, const DatasetOptions& options);
+/// The topics of a ROS bag to read (empty: found by their message types).
+struct BagTopics {
+  std::string cam0, cam1, imu, groundtruth;
+};
+
+/// Where a sequence is: an EuRoC/ASL folder (the folder holding mav0/, or
+/// mav0 itself) or a ROS 1 bag, and, for a bag, its calibration (empty:
+/// found beside it) and topics.
+struct SequenceSource {
+  std::string path;
+  std::string calib;
+  BagTopics topics;
+};
+
+/// Opens a sequence. Throws InputError naming what is wrong and what to pass.
+std::unique_ptr<Sequence> openSequence(const SequenceSource& source, const DatasetOptions& options);
+
+/// Pairs left and right image times (both increasing) that lie within
+/// `tolerance_ns` of each other, in order: (left index, right index) per
+/// pair. Adds the frames of each camera left without a partner to `unpaired`.
+std::vector<std::pair<std::size_t, std::size_t>> pairStereo(const std::vector<std::int64_t>& left,
+                                                            const std::vector<std::int64_t>& right, std::int64_t tolerance_ns,
+                                                            std::size_t unpaired[2]);
 
 }  // namespace edgevio::io

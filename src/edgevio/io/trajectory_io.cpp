@@ -7,6 +7,8 @@
 
 #include "edgevio/common/error.h"
 #include "edgevio/common/table_reader.h"
+#include "edgevio/io/bag_sequence.h"
+#include "edgevio/io/rosbag.h"
 
 namespace edgevio::io {
 
@@ -36,6 +38,7 @@ Quat readUnitQuaternion(const TableReader& r, double w, double x, double y, doub
 }  // namespace
 
 Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected) {
+  if (RosbagReader::looksLikeBag(path)) return readBagTrajectory(path);
   const TrajectoryFormat format = detectFormat(path);
   if (detected) *detected = format;
   const bool euroc = format == TrajectoryFormat::kEuroc;

@@ -28,7 +28,8 @@ enum class TrajectoryFormat { kTum, kEuroc };
 
 /// Reads a trajectory; timestamps must not decrease (equal ones are kept, as evo
 /// does), quaternions must be unit to 1 % (they are normalised). Throws
-/// InputError naming file and line.
+/// InputError naming file and line. A ROS bag gives its only pose topic
+/// (io/bag_sequence.h; `detected` is then left as it was).
 Trajectory readTrajectory(const std::string& path, TrajectoryFormat* detected = nullptr);
 
 /// Writes a trajectory sample by sample, so that a run of any length keeps

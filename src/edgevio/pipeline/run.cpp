@@ -53,7 +53,7 @@ RunSummary startSummary(const RunRequest& req, const io::Sequence& sequence) {
 RunSummary run(const RunRequest& req, const Config& config, const RunObserver& observer) {
   const auto wall_start = Clock::now();
   validate(req, config);
-  const std::unique_ptr<io::Sequence> sequence = io::openSequence(req.dataset, config.dataset);
+  const std::unique_ptr<io::Sequence> sequence = io::openSequence({req.dataset, req.calib, req.topics}, config.dataset);
   if (sequence->frameCount() == 0) throw InputError(req.dataset, 0, "no stereo pairs to process");
   const camera::StereoRectifier rect(sequence->calibration(), config.rectification);
   RunWriter writer(req.out_dir, config, req.mode.imu);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "edgevio/config/config.h"
+#include "edgevio/io/sequence.h"
 #include "edgevio/pipeline/frame_record.h"
 #include "edgevio/pipeline/mode.h"
 #include "edgevio/pipeline/run_summary.h"
@@ -14,11 +15,17 @@
 namespace edgevio::pipeline {
 
 struct RunRequest {
+  RunRequest() = default;
+  RunRequest(std::string dataset_path, std::string out, Mode run_mode = {}, int skip_frames = 0)
+      : dataset(std::move(dataset_path)), out_dir(std::move(out)), mode(run_mode), skip(skip_frames) {}
+
   std::string dataset;
   std::string out_dir;
   Mode mode;              ///< default: the full system
   int skip = 0;           ///< keep every (skip+1)-th stereo frame; the IMU is untouched
   bool realtime = false;  ///< release frames at their timestamps; drop those the pipeline has no room for
+  std::string calib;      ///< a bag's calibration (empty: found beside it)
+  io::BagTopics topics;   ///< a bag's topics (empty: found by type)
 };
 
 /// What a caller may watch while a run goes.

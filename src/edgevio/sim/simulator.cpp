@@ -11,6 +11,7 @@
 
 #include "edgevio/common/error.h"
 #include "edgevio/common/time.h"
+#include "edgevio/io/bag_sequence.h"
 #include "edgevio/io/calibration_io.h"
 #include "edgevio/io/imu_io.h"
 #include "edgevio/io/png_writer.h"
@@ -147,7 +148,9 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
     io_opts.initial_accel_bias_sigma = options.initial_accel_bias_sigma;
     imu = synthesizeImu(spline, begin_ns, end_ns, io_opts, req.seed);
   } else {
-    const std::vector<imu::ImuSample> all = io::readImuCsv(req.imu, 1e9, nullptr);
+    const std::vector<imu::ImuSample> all =
+        io::RosbagReader::looksLikeBag(req.imu) ? io::readBagImu(req.imu) : io::readImuCsv(req.imu, 1e9, nullptr);
+    if (all.empty()) throw InputError(req.imu, 0, "no IMU samples");
     for (const auto& s : all)
       if (s.t_ns >= begin_ns && s.t_ns <= end_ns) imu.samples.push_back(s);
     if (all.front().t_ns > begin_ns + 10000000 || all.back().t_ns < end_ns - 10000000)
