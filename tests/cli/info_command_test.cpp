@@ -26,6 +26,29 @@ TEST(InfoCommand, RealMicroFolderFigures) {
   EXPECT_NE(j.find("1403715278012143104.png"), std::string::npos) << j;  // one of the missing cam1 files
 }
 
+TEST(InfoCommand, ABagsFiguresAreItsFoldersAndItNamesItsTopics) {
+  test::TempDir dir, out_dir;
+  const std::string root = test::writeMiniDataset(dir);
+  std::ostringstream folder, err, bag;
+  ASSERT_EQ(info(infoOf(root), folder, err), kExitOk) << err.str();
+  ConvertArgs c;
+  c.dataset = root;
+  c.out = out_dir.file("mini.bag");
+  c.compression = "lz4";
+  std::ostringstream ignored;
+  ASSERT_EQ(convert(c, ignored, err), kExitOk) << err.str();
+  ASSERT_EQ(info(infoOf(c.out), bag, err), kExitOk) << err.str();
+  // The same figures after the "dataset" line; the bag's topics besides.
+  const auto after = [](const std::string& j, const std::string& from, const std::string& to) {
+    const std::size_t a = j.find(from);
+    return j.substr(a, j.find(to) - a);
+  };
+  EXPECT_EQ(after(bag.str(), "\"cam0_frames\"", "\"topics\""), after(folder.str(), "\"cam0_frames\"", "\"warnings\"")) << bag.str();
+  EXPECT_NE(bag.str().find("\"cam0\": \"/cam0/image_raw\""), std::string::npos) << bag.str();
+  EXPECT_NE(bag.str().find("\"imu\": \"/imu0\""), std::string::npos) << bag.str();
+  EXPECT_EQ(folder.str().find("\"topics\""), std::string::npos);
+}
+
 TEST(InfoCommand, BadInputIsExitOneWithMessage) {
   test::TempDir dir;
   std::ostringstream out, err;

@@ -6,6 +6,7 @@
 #include "edgevio/common/json.h"
 #include "edgevio/config/config.h"
 #include "edgevio/common/time.h"
+#include "edgevio/io/bag_sequence.h"
 #include "edgevio/io/sequence.h"
 
 namespace edgevio::cli {
@@ -29,6 +30,12 @@ int info(const InfoArgs& args, std::ostream& out, std::ostream& err) {
     j.key("imu_rate_hz").value(std::round(static_cast<double>(imu.size() - 1) / imu_span * 100.0) / 100.0);
     j.key("duration_s").value(seq->frameCount() < 2 ? 0.0 : toSeconds(seq->frameTime(seq->frameCount() - 1) - seq->frameTime(0)));
     j.key("groundtruth_poses").value(seq->groundTruth().size());
+    if (const auto* bag = dynamic_cast<const io::BagSequence*>(seq.get())) {
+      const io::BagTopics& t = bag->topics();
+      j.key("topics").beginObject();
+      j.key("cam0").value(t.cam0).key("cam1").value(t.cam1).key("imu").value(t.imu).key("groundtruth").value(t.groundtruth);
+      j.endObject();
+    }
     j.key("warnings").beginArray();
     for (const auto& w : seq->warnings()) j.value(w);
     j.endArray();
