@@ -281,6 +281,19 @@ TEST(Run, ShortRenderedSequenceInRealTimeAccountsForEveryFrame) {
   const std::string summary = test::readFile(out.file("summary.json"));
   EXPECT_NE(summary.find("\"realtime\": true"), std::string::npos);
   EXPECT_NE(summary.find("\"dropped_frames\": " + std::to_string(s.dropped_frames)), std::string::npos);
+  // Latency: a frame's work all happens after it arrives, so each frame's
+  // latency is at least its total time; the summary's max is the column's.
+  TableReader frames(out.file("frames.csv"), TableReader::Separator::kComma, TableReader::Header::kColumnNames);
+  double max_latency = 0.0;
+  while (frames.next()) {
+    const double latency = frames.number(frames.column("latency_ms")), total = frames.number(frames.column("total_ms"));
+    EXPECT_GE(latency + 0.002, total) << "frame " << frames.field(frames.column("timestamp_ns"));  // both printed to 1 us
+    max_latency = std::max(max_latency, latency);
+  }
+  std::printf("latency p50 %.1f ms, p99 %.1f ms, max %.1f ms\n", s.latencyPercentile(50), s.latencyPercentile(99), s.latencyPercentile(100));
+  EXPECT_NEAR(s.latencyPercentile(100), max_latency, 0.001);
+  EXPECT_LE(s.latencyPercentile(50), s.latencyPercentile(99));
+  EXPECT_NE(summary.find("\"latency_ms\": {"), std::string::npos);
 }
 
 TEST(Run, ShortRenderedSequenceWithAnImuGapRestartsAndRecovers) {

@@ -113,6 +113,22 @@ TEST(RunSummary, CountsTheRecords) {
   EXPECT_EQ(s.self_check_failures, 3u);
 }
 
+TEST(RunSummary, LatencyPercentilesAreNearestRank) {
+  RunSummary s;
+  EXPECT_EQ(s.latencyPercentile(50), 0.0);
+  // Latencies 100, 99, ..., 1 ms: the p-th percentile of 1..100 by nearest rank is p.
+  for (int i = 100; i >= 1; --i) {
+    FrameRecord r = someRecord(1000000000 + i);
+    r.latency_ms = i;
+    s.count(r, 1000000000, 10);
+  }
+  EXPECT_EQ(s.latencyPercentile(50), 50.0);
+  EXPECT_EQ(s.latencyPercentile(99), 99.0);
+  EXPECT_EQ(s.latencyPercentile(99.5), 100.0);
+  EXPECT_EQ(s.latencyPercentile(100), 100.0);
+  EXPECT_EQ(s.latencyPercentile(0.5), 1.0);
+}
+
 TEST(Outputs, TheReferenceInDocsIsTheGeneratedOne) {
   std::ostringstream generated;
   writeOutputsReference(generated);

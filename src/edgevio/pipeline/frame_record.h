@@ -58,6 +58,7 @@ struct FrameRecord {
 
   // Times [ms] of the components (the layout of the paper's Table 1).
   double canny_ms = 0, dt_ms = 0, lines_ms = 0, bm_ms = 0, total_ms = 0;
+  double latency_ms = 0;  ///< from the frame's arrival to its pose (the latency_ms column says what arrival is)
 
   // The result.
   geometry::SE3 T_w_b;                ///< the causal pose estimate of the frame

@@ -75,7 +75,9 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
     if (!item.readable) return;
     const auto t_start = Clock::now();
     FrameRecord r = odometry.process(std::move(item.frame));
-    r.total_ms = item.load_ms + std::chrono::duration<double, std::milli>(Clock::now() - t_start).count();
+    const auto posed = Clock::now();
+    r.total_ms = item.load_ms + std::chrono::duration<double, std::milli>(posed - t_start).count();
+    r.latency_ms = std::chrono::duration<double, std::milli>(posed - item.released).count();
     writer.write(r);
     const std::size_t events_before = s.events.size();
     s.count(r, t0, config.tracking.lost_after_failures);

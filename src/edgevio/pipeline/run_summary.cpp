@@ -1,5 +1,7 @@
 #include "edgevio/pipeline/run_summary.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "edgevio/common/json.h"
@@ -18,6 +20,7 @@ void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns, int lost_after)
   estimator_resets += r.restart != WindowRestart::kNone;
   loop_closures += static_cast<std::size_t>(r.loop_links);
   back_links += static_cast<std::size_t>(r.back_links);
+  latencies_ms.push_back(r.latency_ms);
   for (const std::string& event : r.events) {
     char at[64];
     std::snprintf(at, sizeof at, "t = %.3f s: ", toSeconds(r.t_ns - t0_ns));
@@ -34,6 +37,15 @@ void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns, int lost_after)
     failed = true;
     failure = "diverged: non-finite pose";
   }
+}
+
+double RunSummary::latencyPercentile(double p) const {
+  if (latencies_ms.empty()) return 0.0;
+  std::vector<double> sorted = latencies_ms;
+  std::sort(sorted.begin(), sorted.end());
+  // Nearest rank: the smallest value with at least p % of the values at or below it.
+  const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(sorted.size())));
+  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
 }
 
 namespace {
@@ -77,6 +89,12 @@ const std::vector<SummaryField>& summaryFields() {
       {"wall_s", "the run's wall time [s]", [](J& j, const S& s) { j.value(s.wall_s); }},
       {"realtime_factor", "duration_s / wall_s", [](J& j, const S& s) { j.value(s.realtime_factor); }},
       {"peak_rss_mb", "peak resident memory of the process [MB]", [](J& j, const S& s) { j.value(s.peak_rss_mb); }},
+      {"latency_ms", "frames.csv's latency_ms over the run: {p50, p99, max} (nearest-rank percentiles) [ms]",
+       [](J& j, const S& s) {
+         j.beginObject();
+         j.key("p50").value(s.latencyPercentile(50)).key("p99").value(s.latencyPercentile(99)).key("max").value(s.latencyPercentile(100));
+         j.endObject();
+       }},
       {"events", "restarts, IMU gaps, unreadable images, each as \"t = … s: what\"", [](J& j, const S& s) { strings(j, s.events); }},
       {"warnings", "the dataset's warnings (missing images, IMU gaps, unpaired frames)",
        [](J& j, const S& s) { strings(j, s.warnings); }},

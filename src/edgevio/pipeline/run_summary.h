@@ -30,6 +30,10 @@ struct RunSummary {
   double wall_s = 0.0, duration_s = 0.0, realtime_factor = 0.0;
   double peak_rss_mb = 0.0;  ///< peak resident memory of the process so far (getrusage)
   int consecutive_failures = 0;  ///< self-check failures in a row so far
+  std::vector<double> latencies_ms;  ///< every frame's latency_ms, in order
+
+  /// Nearest-rank percentile `p` (0 < p <= 100) of the frames' latencies; 0 without frames.
+  double latencyPercentile(double p) const;
 
   /// Counts one frame. `t0_ns`: the sequence's first frame, for event times;
   /// `lost_after`: consecutive self-check failures that make the run lost.

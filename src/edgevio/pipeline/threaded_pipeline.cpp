@@ -18,6 +18,7 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 /// Frames between the driver and the pyramid thread: decoded and rectified.
 struct Loaded {
   std::int64_t t_ns = 0;
+  Clock::time_point released;
   bool readable = false;
   tracking::StereoFrame frame;
   double ms = 0.0;
@@ -27,10 +28,11 @@ struct Loaded {
 /// enough that a real-time run drops rather than lags.
 constexpr std::size_t kQueueCapacity = 2;
 
-Loaded load(io::Sequence& sequence, std::size_t i, const camera::StereoRectifier& rect) {
+Loaded load(io::Sequence& sequence, std::size_t i, const camera::StereoRectifier& rect, Clock::time_point released) {
   const auto t0 = Clock::now();
   Loaded item;
   item.t_ns = sequence.frameTime(i);
+  item.released = released;
   if (std::optional<cv::Mat> left = sequence.leftImage(i)) {
     item.readable = true;
     item.frame.t_ns = item.t_ns;
@@ -58,9 +60,13 @@ PipelineResult runThreaded(io::Sequence& sequence, const std::vector<std::size_t
     try {
       const auto start = Clock::now();
       for (const std::size_t i : frames) {
-        if (realtime)
-          std::this_thread::sleep_until(start + std::chrono::nanoseconds(sequence.frameTime(i) - sequence.frameTime(frames.front())));
-        Loaded item = load(sequence, i, rect);
+        // Real time: the frame arrives at its timestamp; offline, when the driver gets to it.
+        Clock::time_point released = Clock::now();
+        if (realtime) {
+          released = start + std::chrono::nanoseconds(sequence.frameTime(i) - sequence.frameTime(frames.front()));
+          std::this_thread::sleep_until(released);
+        }
+        Loaded item = load(sequence, i, rect, released);
         if (!realtime)
           loaded.push(std::move(item));
         else if (!loaded.tryPush(std::move(item)))
@@ -77,6 +83,7 @@ PipelineResult runThreaded(io::Sequence& sequence, const std::vector<std::size_t
         const auto t0 = Clock::now();
         PipelineFrame p;
         p.t_ns = item->t_ns;
+        p.released = item->released;
         p.readable = item->readable;
         if (item->readable) p.frame = tracking::prepareFrame(item->frame, rect, vision);
         p.load_ms = item->ms + msSince(t0);

@@ -6,6 +6,7 @@
 // the result does not depend on thread timing. In real time the driver
 // releases frames at their timestamps and drops (counts) those the pipeline
 // has no room for; the stage code is the same.
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -19,6 +20,7 @@ namespace edgevio::pipeline {
 /// A frame as it reaches the consumer.
 struct PipelineFrame {
   std::int64_t t_ns = 0;
+  std::chrono::steady_clock::time_point released;  ///< when the frame arrived (real time: at its timestamp)
   bool readable = false;  ///< false: its left image did not decode (the frame carries nothing else)
   tracking::PreparedFrame frame;
   double load_ms = 0.0;   ///< decoding, rectification and the pyramid, on the first two threads
