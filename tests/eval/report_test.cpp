@@ -66,7 +66,7 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
   io::writeTrajectoryTum(dir.file("seqA/edge+imu/trajectory_tum.txt"), circle(0.02));
   dir.write("seqA/edge+imu/summary.json",
             "{\"mode\": \"edge+imu\", \"sequence\": \"seqA\", \"failed\": false, \"groundtruth\": \"../../gt.csv\", "
-            "\"realtime_factor\": 7.5}");
+            "\"realtime_factor\": 7.5, \"latency_ms\": {\"p50\": 12.5, \"p99\": 40.25, \"max\": 51}}");
   // failed run
   dir.write("seqA/edge-only/summary.json", "{\"mode\": \"edge-only\", \"sequence\": \"seqA\", \"failed\": true}");
   // run without ground truth
@@ -91,7 +91,8 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
   EXPECT_NE(md.find("no ground truth"), std::string::npos) << md;
   EXPECT_NE(md.find("no timestamp overlap"), std::string::npos) << md;
   EXPECT_NE(csv.find("seqA,edge+imu,seqA/edge+imu,ok,,400,se3,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",7.50,0,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",7.50,0,,12.50,40.25\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",0,,,\n"), std::string::npos) << csv;  // a summary without them: empty fields
 }
 
 TEST(EvalCommand, SegmentsAndErrors) {

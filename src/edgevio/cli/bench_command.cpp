@@ -18,6 +18,7 @@
 // DIR/tables.md holds the results tables (ATE by mode, seeds side by side;
 // by frame skip) that scripts/results.sh puts into the README.
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -254,7 +255,7 @@ void writeAteBySkip(std::ostream& out, const Matrix& matrix, const std::vector<J
 }
 
 /// Time per component [ms, mean] of every run (per frame, but for those per
-/// keyframe) and its real-time factor.
+/// keyframe), its real-time factor and its latency percentiles.
 void writeTimingTable(std::ostream& out, const std::vector<eval::RunEvaluation>& runs, const std::string& runs_dir) {
   out << "\n| sequence | mode |";
   std::string rule = "|---|---|";
@@ -263,7 +264,7 @@ void writeTimingTable(std::ostream& out, const std::vector<eval::RunEvaluation>&
       out << " " << c.component.name << (std::string(c.component.per) == "keyframe" ? " (per keyframe)" : "") << " |";
       rule += "---:|";
     }
-  out << " real-time factor |\n" << rule << "---:|\n";
+  out << " real-time factor | latency p50 / p99 [ms] |\n" << rule << "---:|---:|\n";
   for (const auto& r : runs) {
     std::vector<pipeline::ComponentTime> times;
     try {
@@ -278,7 +279,9 @@ void writeTimingTable(std::ostream& out, const std::vector<eval::RunEvaluation>&
       out << " " << (c.count > 0 ? b : "-") << " |";
     }
     std::snprintf(b, sizeof b, "%.1f", r.realtime_factor);
-    out << " " << b << " |\n";
+    out << " " << b << " |";
+    std::snprintf(b, sizeof b, "%.1f / %.1f", r.latency_p50_ms, r.latency_p99_ms);
+    out << " " << (std::isfinite(r.latency_p50_ms) ? b : "-") << " |\n";
   }
 }
 

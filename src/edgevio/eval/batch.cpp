@@ -47,20 +47,23 @@ RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOp
   if (r.folder == ".") r.folder = run.filename().string();
   r.sequence = r.folder;
   r.mode = "-";
-  r.realtime_factor = r.peak_rss_mb = kNaN;
+  r.realtime_factor = r.peak_rss_mb = r.latency_p50_ms = r.latency_p99_ms = kNaN;
   YAML::Node summary(YAML::NodeType::Map);
   try {
     if (fs::exists(run / "summary.json")) summary = loadYamlFile((run / "summary.json").string());
     r.sequence = scalarOr(summary, "sequence", r.sequence);
     r.mode = scalarOr(summary, "mode", r.mode);
-    const auto number = [&](const char* key, double fallback) {
+    const auto number = [](const YAML::Node& n, double fallback) {
       double v = 0.0;
-      const YAML::Node n = summary[key];
       return n && n.IsScalar() && std::sscanf(n.Scalar().c_str(), "%lf", &v) == 1 ? v : fallback;
     };
-    r.realtime_factor = number("realtime_factor", kNaN);
-    r.peak_rss_mb = number("peak_rss_mb", kNaN);
-    r.skip = static_cast<int>(number("skip", 0.0));
+    r.realtime_factor = number(summary["realtime_factor"], kNaN);
+    r.peak_rss_mb = number(summary["peak_rss_mb"], kNaN);
+    r.skip = static_cast<int>(number(summary["skip"], 0.0));
+    if (const YAML::Node latency = summary["latency_ms"]; latency && latency.IsMap()) {
+      r.latency_p50_ms = number(latency["p50"], kNaN);
+      r.latency_p99_ms = number(latency["p99"], kNaN);
+    }
     if (scalarOr(summary, "failed", "false") == "true") {
       r.failure = "run reported failure (summary.json: failed = true)";
       const std::string why = scalarOr(summary, "failure", "");
@@ -154,7 +157,7 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
 void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
   out << "sequence,mode,folder,status,failure,matched,align,ate_rmse_m,ate_mean_m,ate_median_m,ate_max_m,"
          "are_rot_deg_per_m,are_trans_m_per_m,rpe_deltas_m,rpe_trans_rmse_m,rpe_rot_rmse_deg,length_m,duration_s,"
-         "realtime_factor,skip,peak_rss_mb\n";
+         "realtime_factor,skip,peak_rss_mb,latency_p50_ms,latency_p99_ms\n";
   for (const auto& r : runs) {
     out << csvField(r.sequence) << "," << csvField(r.mode) << "," << csvField(r.folder) << ","
         << (r.ok ? "ok" : "failed") << "," << csvField(r.failure) << ",";
@@ -175,7 +178,9 @@ void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
       out << ",,,,,,,,,,,,,";
     }
     out << (std::isfinite(r.realtime_factor) ? num(r.realtime_factor, 2) : "") << "," << r.skip << ","
-        << (std::isfinite(r.peak_rss_mb) ? num(r.peak_rss_mb, 1) : "") << "\n";
+        << (std::isfinite(r.peak_rss_mb) ? num(r.peak_rss_mb, 1) : "") << ","
+        << (std::isfinite(r.latency_p50_ms) ? num(r.latency_p50_ms, 2) : "") << ","
+        << (std::isfinite(r.latency_p99_ms) ? num(r.latency_p99_ms, 2) : "") << "\n";
   }
 }
 

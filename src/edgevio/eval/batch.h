@@ -29,6 +29,7 @@ struct RunEvaluation {
   double realtime_factor = 0.0;  ///< from summary.json when present, else NaN
   int skip = 0;                  ///< frames skipped between processed ones (summary.json "skip")
   double peak_rss_mb = 0.0;      ///< the run's peak resident memory (summary.json "peak_rss_mb"), else NaN
+  double latency_p50_ms = 0.0, latency_p99_ms = 0.0;  ///< summary.json "latency_ms" p50 and p99, else NaN
 };
 
 /// Finds and evaluates every run folder under `dir`, sorted by sequence, mode, folder.
