@@ -1,6 +1,7 @@
 #include <ostream>
 
 #include "edgevio/cli/commands.h"
+#include "edgevio/cli/flags.h"
 #include "edgevio/cli/progress.h"
 #include "edgevio/common/error.h"
 #include "edgevio/config/config.h"
@@ -11,10 +12,8 @@ namespace edgevio::cli {
 int convert(const ConvertArgs& a, std::ostream& out, std::ostream& err) {
   try {
     io::BagExportOptions options;
-    if (!options::parseChoice(io::kBagCompressionChoices, a.compression, &options.compression))
-      throw InputError("--compression: '" + a.compression + "' is not one of " + options::choiceList(io::kBagCompressionChoices));
-    if (!options::parseChoice(io::kBagImagesChoices, a.images, &options.images))
-      throw InputError("--images: '" + a.images + "' is not one of " + options::choiceList(io::kBagImagesChoices));
+    parseFlagChoice("--compression", a.compression, io::kBagCompressionChoices, &options.compression);
+    parseFlagChoice("--images", a.images, io::kBagImagesChoices, &options.images);
     const std::unique_ptr<io::Sequence> seq = io::openSequence({a.dataset, a.calib, a.topics}, Config{}.dataset);
     Progress progress("stereo frames written", Progress::stderrIsTerminal());
     const io::BagExport e =

@@ -1,6 +1,7 @@
 #include <ostream>
 
 #include "edgevio/cli/commands.h"
+#include "edgevio/cli/flags.h"
 #include "edgevio/common/error.h"
 #include "edgevio/common/table_reader.h"
 #include "edgevio/config/config.h"
@@ -58,8 +59,7 @@ int eval(const EvalArgs& args, std::ostream& out, std::ostream& err) {
   try {
     Config config = args.config.empty() ? Config{} : loadConfig(args.config);
     eval::EvalOptions& options = config.eval;
-    if (!args.align.empty() && !options::parseChoice(eval::kAlignmentChoices, args.align, &options.alignment))
-      throw InputError("--align: '" + args.align + "' is not one of " + options::choiceList(eval::kAlignmentChoices));
+    if (!args.align.empty()) parseFlagChoice("--align", args.align, eval::kAlignmentChoices, &options.alignment);
     if (!args.deltas_m.empty()) options.rpe_deltas_m = args.deltas_m;
     if (!args.segments.empty()) parseSegments(args.segments, &options);
     const std::string invalid = options::validate(options);

@@ -18,8 +18,6 @@ namespace {
 
 const std::vector<std::string> kImageTypes = {ros::kImage, ros::kCompressedImage};
 const std::vector<std::string> kPoseTypes = {ros::kPoseStamped, ros::kTransformStamped, ros::kOdometry};
-// A std_msgs/Header with its stamp fits in 12 bytes: seq, sec, nsec.
-constexpr std::size_t kStampBytes = 12;
 // What to do when a bag read for its poses or IMU alone has several such topics.
 constexpr const char* kOneTopic = "a bag read as a trajectory or an IMU log needs exactly one such topic (ROS's rosbag filter makes one)";
 
@@ -51,13 +49,6 @@ int leftness(const std::string& topic) {
   for (const char* right : {"cam1", "right", "infra2"})
     if (topic.find(right) != std::string::npos) return -1;
   return 0;
-}
-
-std::int64_t headerStamp(const std::vector<std::uint8_t>& head) {
-  const auto u32 = [&](std::size_t i) {
-    return head[i] | (head[i + 1] << 8) | (head[i + 2] << 16) | (static_cast<std::uint32_t>(head[i + 3]) << 24);
-  };
-  return static_cast<std::int64_t>(u32(4)) * 1000000000LL + u32(8);
 }
 
 /// Orders a topic's messages by their record time, checks that their stamps
@@ -220,9 +211,10 @@ void BagSequence::readMessages(const DatasetOptions& options) {
     const auto where = [&](const std::string& topic, std::size_t n) { return path_ + ", topic " + topic + ", message " + std::to_string(n); };
     for (int cam = 0; cam < 2; ++cam)
       if (on(image_connections_[cam], ref)) {
-        const std::vector<std::uint8_t> head = reader_->read(ref, kStampBytes);
-        if (head.size() < kStampBytes) throw InputError(where(cam == 0 ? topics_.cam0 : topics_.cam1, images[cam].size()) + ": too short for a header");
-        images[cam].emplace_back(ref, headerStamp(head));
+        std::int64_t stamp = 0;
+        if (!ros::parseHeaderStamp(reader_->read(ref, ros::kHeaderStampBytes), &stamp))
+          throw InputError(where(cam == 0 ? topics_.cam0 : topics_.cam1, images[cam].size()) + ": too short for a header");
+        images[cam].emplace_back(ref, stamp);
       }
     if (on(imu_connections_, ref)) imu.emplace_back(ref, imuMessage(*reader_, ref, where(topics_.imu, imu.size())));
     if (on(groundtruth_connections_, ref)) gt.push_back(poseMessage(*reader_, ref, where(topics_.groundtruth, gt.size())));

@@ -49,12 +49,17 @@ class Cursor {
     if (n > b_.size() - i_) return fail();
     i_ += n;
   }
-  /// std_msgs/Header: the stamp in ns.
-  std::int64_t header() {
+  /// std_msgs/Header up to its frame_id: the stamp in ns.
+  std::int64_t stamp() {
     u32();  // seq
     const std::uint32_t sec = u32(), nsec = u32();
-    string();  // frame_id
     return static_cast<std::int64_t>(sec) * 1000000000LL + nsec;
+  }
+  /// std_msgs/Header: the stamp in ns.
+  std::int64_t header() {
+    const std::int64_t t = stamp();
+    string();  // frame_id
+    return t;
   }
   Vec3 vec3() {
     const double x = f64(), y = f64();
@@ -199,6 +204,12 @@ bool parseImu(const std::vector<std::uint8_t>& bytes, imu::ImuSample* out) {
   out->accel = c.vec3();
   c.skip(9 * 8);
   return c.ok() && out->gyro.allFinite() && out->accel.allFinite();
+}
+
+bool parseHeaderStamp(const std::vector<std::uint8_t>& bytes, std::int64_t* stamp_ns) {
+  Cursor c(bytes);
+  *stamp_ns = c.stamp();
+  return c.ok();
 }
 
 bool parsePose(const std::vector<std::uint8_t>& bytes, const std::string& type, std::int64_t* stamp_ns, geometry::SE3* T) {

@@ -45,6 +45,12 @@ bool parseImage(const std::vector<std::uint8_t>& bytes, const std::string& type,
 /// The image as 8-bit grey; empty with `error` set for an encoding edgevio does not read.
 cv::Mat toGray(const ImageMessage& m, std::string* error);
 
+/// A std_msgs/Header's seq and stamp: the first bytes of every message above.
+inline constexpr std::size_t kHeaderStampBytes = 12;
+/// The stamp of a message that starts with a Header, from at least its first
+/// kHeaderStampBytes bytes; false when there are fewer.
+bool parseHeaderStamp(const std::vector<std::uint8_t>& bytes, std::int64_t* stamp_ns);
+
 bool parseImu(const std::vector<std::uint8_t>& bytes, imu::ImuSample* out);
 /// A PoseStamped, TransformStamped or Odometry (by `type`) as a timestamped pose.
 bool parsePose(const std::vector<std::uint8_t>& bytes, const std::string& type, std::int64_t* stamp_ns, geometry::SE3* T);

@@ -49,6 +49,26 @@ bool parseFields(const std::uint8_t* p, std::size_t n, Fields* out) {
 
 std::string atByte(std::uint64_t pos) { return "byte " + std::to_string(pos); }
 
+/// A record inside a decompressed chunk: its header fields and where its data lies.
+struct ChunkRecord {
+  Fields fields;
+  std::size_t data_at = 0;
+  std::uint32_t data_len = 0;
+};
+
+/// The record at `off` of a chunk's bytes (its fields parsed when `with_fields`);
+/// false when it runs past them or its header does not parse.
+bool chunkRecordAt(const std::vector<std::uint8_t>& data, std::size_t off, bool with_fields, ChunkRecord* r) {
+  if (off + 8 > data.size()) return false;
+  const std::uint32_t header_len = u32(&data[off]);
+  if (header_len > data.size() - off - 8) return false;
+  r->fields.clear();
+  if (with_fields && !parseFields(&data[off + 4], header_len, &r->fields)) return false;
+  r->data_len = u32(&data[off + 4 + header_len]);
+  r->data_at = off + 8 + header_len;
+  return r->data_len <= data.size() - r->data_at;
+}
+
 }  // namespace
 
 struct RosbagReader::Record {
@@ -186,14 +206,10 @@ void RosbagReader::scanWithoutIndex(std::uint64_t first_record) {
       chunks_.push_back({r.data_pos, r.data_len, u32(size), r.fields["compression"]});
       const std::vector<std::uint8_t>& data = chunkData(chunk_index);
       std::size_t off = 0;
-      while (off + 8 <= data.size()) {
-        const std::uint32_t header_len = u32(&data[off]);
-        if (header_len > data.size() - off - 8) break;
-        Fields f;
-        if (!parseFields(&data[off + 4], header_len, &f)) break;
-        const std::uint32_t data_len = u32(&data[off + 4 + header_len]);
-        const std::size_t data_at = off + 8 + header_len;
-        if (data_len > data.size() - data_at) break;
+      ChunkRecord rec;
+      while (chunkRecordAt(data, off, true, &rec)) {
+        Fields& f = rec.fields;
+        const std::size_t data_at = rec.data_at, data_len = rec.data_len;
         const int op = f["op"].size() == 1 ? static_cast<std::uint8_t>(f["op"][0]) : -1;
         if (op == kConnection && f["conn"].size() == 4)
           addConnection(u32(reinterpret_cast<const std::uint8_t*>(f["conn"].data())), f["topic"],
@@ -271,15 +287,11 @@ std::vector<std::uint8_t> RosbagReader::read(const BagMessageRef& ref, std::size
     return std::move(r.data);
   }
   const std::vector<std::uint8_t>& data = chunkData(ref.chunk);
-  const std::size_t off = ref.offset;
-  if (off + 8 > data.size()) throw InputError(path_, 0, where + " lies outside the chunk");
-  const std::uint32_t header_len = u32(&data[off]);
-  if (header_len > data.size() - off - 8) throw InputError(path_, 0, where + " is damaged");
-  const std::uint32_t data_len = u32(&data[off + 4 + header_len]);
-  const std::size_t at = off + 8 + header_len;
-  if (data_len > data.size() - at) throw InputError(path_, 0, where + " is damaged");
-  const std::size_t n = std::min<std::size_t>(data_len, max_bytes);
-  return std::vector<std::uint8_t>(data.begin() + static_cast<long>(at), data.begin() + static_cast<long>(at + n));
+  if (std::size_t{ref.offset} + 8 > data.size()) throw InputError(path_, 0, where + " lies outside the chunk");
+  ChunkRecord rec;
+  if (!chunkRecordAt(data, ref.offset, false, &rec)) throw InputError(path_, 0, where + " is damaged");
+  const std::size_t n = std::min<std::size_t>(rec.data_len, max_bytes);
+  return std::vector<std::uint8_t>(data.begin() + static_cast<long>(rec.data_at), data.begin() + static_cast<long>(rec.data_at + n));
 }
 
 }  // namespace edgevio::io
