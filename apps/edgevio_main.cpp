@@ -21,9 +21,10 @@ int main(int argc, char** argv) {
 
   // The options of a ROS bag input, for every subcommand that reads one.
   // The dataset to read (first positional) and, for a bag, its calibration and topics.
-  const auto sequenceOptions = [](CLI::App* cmd, std::string* dataset, std::string* calib, io::BagTopics* topics) {
-    cmd->add_option("dataset", *dataset, "ASL folder (holding mav0/) or ROS 1 bag")->required();
-    cmd->add_option("--calib", *calib, "A bag's calibration: Kalibr camchain-imucam.yaml or an ASL folder (default: beside the bag)");
+  const auto sequenceOptions = [](CLI::App* cmd, io::SequenceSource* source) {
+    io::BagTopics* topics = &source->topics;
+    cmd->add_option("dataset", source->path, "ASL folder (holding mav0/) or ROS 1 bag")->required();
+    cmd->add_option("--calib", source->calib, "A bag's calibration: Kalibr camchain-imucam.yaml or an ASL folder (default: beside the bag)");
     cmd->add_option("--cam0-topic", topics->cam0, "A bag's left image topic (default: found by type and name)");
     cmd->add_option("--cam1-topic", topics->cam1, "A bag's right image topic");
     cmd->add_option("--imu-topic", topics->imu, "A bag's IMU topic (default: the one sensor_msgs/Imu topic)");
@@ -32,12 +33,12 @@ int main(int argc, char** argv) {
 
   cli::InfoArgs info;
   auto* info_cmd = app.add_subcommand("info", "Describe a dataset (ASL folder or ROS bag) as one JSON object");
-  sequenceOptions(info_cmd, &info.dataset, &info.calib, &info.topics);
+  sequenceOptions(info_cmd, &info.source);
   info_cmd->add_option("--config", info.config, "Config file (YAML; default: built-in defaults)");
 
   cli::RunArgs run;
   auto* run_cmd = app.add_subcommand("run", "Estimate a trajectory from a dataset");
-  sequenceOptions(run_cmd, &run.dataset, &run.calib, &run.topics);
+  sequenceOptions(run_cmd, &run.source);
   run_cmd->add_option("--out", run.out, "Output folder")->required();
   run_cmd->add_option("--mode", run.mode, "edge+imu+loop (default, the full system) | edge+imu | edge+loop | edge-only");
   run_cmd->add_option("--config", run.config, "Config file (YAML)");
@@ -46,7 +47,7 @@ int main(int argc, char** argv) {
 
   cli::ConvertArgs conv;
   auto* convert_cmd = app.add_subcommand("convert", "Write a dataset (ASL folder or bag) as a ROS 1 bag, Kalibr calibration beside it");
-  sequenceOptions(convert_cmd, &conv.dataset, &conv.calib, &conv.topics);
+  sequenceOptions(convert_cmd, &conv.source);
   convert_cmd->add_option("out", conv.out, "The bag to write (OUT.bag)")->required();
   convert_cmd->add_option("--compression", conv.compression, "Chunk compression: none (default) | bz2 | lz4");
   convert_cmd->add_option("--images", conv.images, "raw (sensor_msgs/Image, default) | png (sensor_msgs/CompressedImage)");

@@ -39,28 +39,32 @@ std::vector<Vec3> testPoints() {
   return p;
 }
 
-TEST(CameraModel, RadTanMatchesOpenCv) {
-  const CameraModel c = eurocCam0();
+/// OpenCV's projection of points at the identity pose with intrinsics K and distortion D.
+using OpenCvProjection = void (*)(const std::vector<cv::Point3d>&, const cv::Mat& K, const cv::Mat& D, std::vector<cv::Point2d>*);
+
+/// c.project agrees with OpenCV's projection to 1e-9 px on the test points.
+void expectProjectsAsOpenCv(const CameraModel& c, OpenCvProjection project) {
   const cv::Mat K = (cv::Mat_<double>(3, 3) << c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1);
   const cv::Mat D = (cv::Mat_<double>(4, 1) << c.coeffs[0], c.coeffs[1], c.coeffs[2], c.coeffs[3]);
   for (const Vec3& p : testPoints()) {
-    std::vector<cv::Point3d> in{{p.x(), p.y(), p.z()}};
     std::vector<cv::Point2d> out;
-    cv::projectPoints(in, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, D, out);
+    project({{p.x(), p.y(), p.z()}}, K, D, &out);
     EXPECT_LT((c.project(p) - Vec2(out[0].x, out[0].y)).norm(), 1e-9);
   }
 }
 
+TEST(CameraModel, RadTanMatchesOpenCv) {
+  expectProjectsAsOpenCv(eurocCam0(), [](const std::vector<cv::Point3d>& in, const cv::Mat& K, const cv::Mat& D,
+                                         std::vector<cv::Point2d>* out) {
+    cv::projectPoints(in, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, D, *out);
+  });
+}
+
 TEST(CameraModel, EquidistantMatchesOpenCvFisheye) {
-  const CameraModel c = tumViCam0();
-  const cv::Mat K = (cv::Mat_<double>(3, 3) << c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1);
-  const cv::Mat D = (cv::Mat_<double>(4, 1) << c.coeffs[0], c.coeffs[1], c.coeffs[2], c.coeffs[3]);
-  for (const Vec3& p : testPoints()) {
-    std::vector<cv::Point3d> in{{p.x(), p.y(), p.z()}};
-    std::vector<cv::Point2d> out;
-    cv::fisheye::projectPoints(in, out, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, D);
-    EXPECT_LT((c.project(p) - Vec2(out[0].x, out[0].y)).norm(), 1e-9);
-  }
+  expectProjectsAsOpenCv(tumViCam0(), [](const std::vector<cv::Point3d>& in, const cv::Mat& K, const cv::Mat& D,
+                                         std::vector<cv::Point2d>* out) {
+    cv::fisheye::projectPoints(in, *out, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, D);
+  });
 }
 
 TEST(CameraModel, UnprojectInvertsProjectOverTheImage) {

@@ -10,7 +10,7 @@ namespace {
 
 InfoArgs infoOf(const std::string& dataset) {
   InfoArgs a;
-  a.dataset = dataset;
+  a.source.path = dataset;
   return a;
 }
 
@@ -32,7 +32,7 @@ TEST(InfoCommand, ABagsFiguresAreItsFoldersAndItNamesItsTopics) {
   std::ostringstream folder, err, bag;
   ASSERT_EQ(info(infoOf(root), folder, err), kExitOk) << err.str();
   ConvertArgs c;
-  c.dataset = root;
+  c.source.path = root;
   c.out = out_dir.file("mini.bag");
   c.compression = "lz4";
   std::ostringstream ignored;

@@ -72,4 +72,8 @@ void expectJacobianNear(const Eigen::MatrixXd& analytic, const Eigen::MatrixXd& 
   EXPECT_LE(err, tol) << what << "\nanalytic:\n" << analytic << "\nnumeric:\n" << numeric;
 }
 
+void expectContainsAll(const std::string& text, const std::vector<std::string>& fragments) {
+  for (const std::string& f : fragments) EXPECT_NE(text.find(f), std::string::npos) << "'" << f << "' not in:\n" << text;
+}
+
 }  // namespace edgevio::test

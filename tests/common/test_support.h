@@ -53,6 +53,9 @@ void expectInputError(F&& f, const std::vector<std::string>& fragments) {
   }
 }
 
+/// Expects every fragment to occur in text.
+void expectContainsAll(const std::string& text, const std::vector<std::string>& fragments);
+
 /// Central-difference Jacobian of f: R^n → R^m at x, step h.
 Eigen::MatrixXd numericJacobian(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f,
                                 const Eigen::VectorXd& x, double h = 1e-6);

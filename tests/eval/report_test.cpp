@@ -35,10 +35,9 @@ TEST(Report, JsonHasTheDocumentedKeys) {
   const EvalResult r = evaluate(circle(0), circle(0.05), EvalOptions{});
   std::ostringstream o;
   writeJson(o, r);
-  for (const char* key : {"\"matched\"", "\"align\"", "\"ate_rmse_m\"", "\"ate_mean_m\"", "\"ate_median_m\"",
-                          "\"ate_max_m\"", "\"rpe\"", "\"delta_m\"", "\"trans_rmse_m\"", "\"rot_rmse_deg\"",
-                          "\"are_rot_deg_per_m\"", "\"are_trans_m_per_m\"", "\"length_m\"", "\"duration_s\""})
-    EXPECT_NE(o.str().find(key), std::string::npos) << key;
+  test::expectContainsAll(o.str(), {"\"matched\"", "\"align\"", "\"ate_rmse_m\"", "\"ate_mean_m\"", "\"ate_median_m\"",
+                                    "\"ate_max_m\"", "\"rpe\"", "\"delta_m\"", "\"trans_rmse_m\"", "\"rot_rmse_deg\"",
+                                    "\"are_rot_deg_per_m\"", "\"are_trans_m_per_m\"", "\"length_m\"", "\"duration_s\""});
   std::ostringstream t;
   writeTable(t, r);
   EXPECT_NE(t.str().find("ATE RMSE"), std::string::npos);
@@ -49,8 +48,7 @@ TEST(Report, SvgPlotIsReadable) {
   const std::string svg = svgPlot(r, "circle <test>");
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
-  for (const char* text : {"x [m]", "y [m]", "ATE [m]", "ground truth", "estimate (aligned)", "circle &lt;test&gt;"})
-    EXPECT_NE(svg.find(text), std::string::npos) << text;
+  test::expectContainsAll(svg, {"x [m]", "y [m]", "ATE [m]", "ground truth", "estimate (aligned)", "circle &lt;test&gt;"});
   // Two data polylines in the top view plus the ATE curve.
   std::size_t count = 0;
   for (std::size_t p = svg.find("<polyline"); p != std::string::npos; p = svg.find("<polyline", p + 1)) ++count;

@@ -7,18 +7,11 @@ namespace edgevio::camera {
 struct RectificationOptions {
   double alpha;
 
-  RectificationOptions() { options::setDefaults(*this); }
-  static const options::Table<RectificationOptions>& table();
+  EDGEVIO_OPTIONS(RectificationOptions)
 };
 
-inline const options::Table<RectificationOptions>& RectificationOptions::table() {
-  using S = RectificationOptions;
-  using namespace options;
-  static const Table<S> t{{
-      number("alpha", &S::alpha, 0.0, "-", "free scaling of stereoRectify: 0 keeps only valid pixels (paper), 1 keeps every pixel",
-             closed(0, 1)),
-  }};
-  return t;
-}
+EDGEVIO_OPTIONS_TABLE(RectificationOptions,
+    number("alpha", &S::alpha, 0.0, "-", "free scaling of stereoRectify: 0 keeps only valid pixels (paper), 1 keeps every pixel",
+           closed(0, 1)))
 
 }  // namespace edgevio::camera

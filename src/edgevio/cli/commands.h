@@ -15,10 +15,8 @@ constexpr int kExitOk = 0;
 constexpr int kExitError = 1;
 
 struct InfoArgs {
-  std::string dataset;
+  io::SequenceSource source;
   std::string config;  ///< optional config file
-  std::string calib;   ///< a bag's calibration
-  io::BagTopics topics;
 };
 /// `edgevio info DATA`: one JSON object describing an ASL folder or a bag.
 int info(const InfoArgs& args, std::ostream& out, std::ostream& err);
@@ -49,18 +47,17 @@ struct SimulateArgs {
 int simulate(const SimulateArgs& args, std::ostream& out, std::ostream& err);
 
 struct RunArgs {
-  std::string dataset, out, mode = "edge+imu+loop", config;  ///< default: the full system
+  io::SequenceSource source;
+  std::string out, mode = "edge+imu+loop", config;  ///< default: the full system
   int skip = 0;
   bool realtime = false;
-  std::string calib;  ///< a bag's calibration
-  io::BagTopics topics;
 };
 /// `edgevio run`: estimate a trajectory (issues #5-#8).
 int run(const RunArgs& args, std::ostream& out, std::ostream& err);
 
 struct ConvertArgs {
-  std::string dataset, out, compression = "none", images = "raw", calib;
-  io::BagTopics topics;
+  io::SequenceSource source;
+  std::string out, compression = "none", images = "raw";
 };
 /// `edgevio convert DATA OUT.bag`: any sequence edgevio reads as a ROS 1 bag,
 /// with Kalibr's calibration files beside it.

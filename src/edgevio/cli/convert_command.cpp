@@ -14,7 +14,7 @@ int convert(const ConvertArgs& a, std::ostream& out, std::ostream& err) {
     io::BagExportOptions options;
     parseFlagChoice("--compression", a.compression, io::kBagCompressionChoices, &options.compression);
     parseFlagChoice("--images", a.images, io::kBagImagesChoices, &options.images);
-    const std::unique_ptr<io::Sequence> seq = io::openSequence({a.dataset, a.calib, a.topics}, Config{}.dataset);
+    const std::unique_ptr<io::Sequence> seq = io::openSequence(a.source, Config{}.dataset);
     Progress progress("stereo frames written", Progress::stderrIsTerminal());
     const io::BagExport e =
         io::exportBag(*seq, a.out, options, [&](std::size_t done, std::size_t total) { progress.update(done, total); });

@@ -14,7 +14,7 @@ namespace edgevio::cli {
 int info(const InfoArgs& args, std::ostream& out, std::ostream& err) {
   try {
     const Config config = args.config.empty() ? Config{} : loadConfig(args.config);
-    const std::unique_ptr<io::Sequence> seq = io::openSequence({args.dataset, args.calib, args.topics}, config.dataset);
+    const std::unique_ptr<io::Sequence> seq = io::openSequence(args.source, config.dataset);
     // Decode every pair once: frames that fail to decode are found and counted.
     std::size_t stereo_pairs = 0;
     for (std::size_t i = 0; i < seq->frameCount(); ++i)

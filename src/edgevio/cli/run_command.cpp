@@ -13,10 +13,10 @@ int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
     const Config config = a.config.empty() ? Config{} : loadConfig(a.config);
     const std::optional<pipeline::Mode> mode = pipeline::parseMode(a.mode);
     if (!mode) throw InputError("--mode: unknown mode '" + a.mode + "': use " + pipeline::kModeNames);
-    pipeline::RunRequest r(a.dataset, a.out, *mode, a.skip);
+    pipeline::RunRequest r(a.source.path, a.out, *mode, a.skip);
     r.realtime = a.realtime;
-    r.calib = a.calib;
-    r.topics = a.topics;
+    r.calib = a.source.calib;
+    r.topics = a.source.topics;
     Progress progress("frames", Progress::stderrIsTerminal());
     pipeline::RunObserver observer;
     observer.progress = [&](std::size_t done, std::size_t total, double seq_s) { progress.update(done, total, seq_s); };

@@ -44,36 +44,26 @@ void JsonWriter::separate() {
   }
 }
 
-JsonWriter& JsonWriter::beginObject() {
+JsonWriter& JsonWriter::open(char bracket) {
   separate();
-  out_ << '{';
+  out_ << bracket;
   has_items_.push_back(false);
   return *this;
 }
 
-JsonWriter& JsonWriter::endObject() {
+JsonWriter& JsonWriter::close(char bracket) {
   const bool had = has_items_.back();
   has_items_.pop_back();
   if (had) newline();
-  out_ << '}';
-  if (has_items_.empty() && pretty_) out_ << '\n';
+  out_ << bracket;
+  if (has_items_.empty() && pretty_) out_ << '\n';  // a document ends its last line
   return *this;
 }
 
-JsonWriter& JsonWriter::beginArray() {
-  separate();
-  out_ << '[';
-  has_items_.push_back(false);
-  return *this;
-}
-
-JsonWriter& JsonWriter::endArray() {
-  const bool had = has_items_.back();
-  has_items_.pop_back();
-  if (had) newline();
-  out_ << ']';
-  return *this;
-}
+JsonWriter& JsonWriter::beginObject() { return open('{'); }
+JsonWriter& JsonWriter::endObject() { return close('}'); }
+JsonWriter& JsonWriter::beginArray() { return open('['); }
+JsonWriter& JsonWriter::endArray() { return close(']'); }
 
 JsonWriter& JsonWriter::key(const std::string& k) {
   separate();

@@ -27,6 +27,8 @@ class JsonWriter {
   static std::string escape(const std::string& s);
 
  private:
+  JsonWriter& open(char bracket);
+  JsonWriter& close(char bracket);
   void separate();
   void newline();
   std::ostream& out_;

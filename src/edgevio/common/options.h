@@ -7,23 +7,22 @@
 //   struct ExampleOptions {
 //     int iterations;
 //     Weight weight;
-//     ExampleOptions() { options::setDefaults(*this); }
-//     static const options::Table<ExampleOptions>& table();
+//     EDGEVIO_OPTIONS(ExampleOptions)
 //   };
-//   inline const options::Table<ExampleOptions>& ExampleOptions::table() {
-//     using S = ExampleOptions;
-//     static const options::Table<S> t{{
-//         options::number("iterations", &S::iterations, 20, "-", "Gauss-Newton iterations", options::closed(1, 100)),
-//         options::choice("weight", &S::weight, Weight::kCauchy, kWeightChoices, "robust weight of a residual"),
-//     }};
-//     return t;
-//   }
+//   EDGEVIO_OPTIONS_TABLE(ExampleOptions,
+//       number("iterations", &S::iterations, 20, "-", "Gauss-Newton iterations", closed(1, 100)),
+//       choice("weight", &S::weight, Weight::kCauchy, kWeightChoices, "robust weight of a residual"))
+//
+// Inside the table S names the struct and options:: is in scope; an entry is
+// a number(), a choice(), the nested() fields of a member struct, or a
+// Rule<S>{holds, message} between options.
 #include <cmath>
 #include <cstddef>
 #include <functional>
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace edgevio::options {
@@ -234,4 +233,42 @@ std::string validate(const S& s) {
   return {};
 }
 
+namespace detail {
+template <class S>
+void append(Table<S>& t, Field<S> f) {
+  t.fields.push_back(std::move(f));
+}
+template <class S>
+void append(Table<S>& t, std::vector<Field<S>> fs) {
+  for (Field<S>& f : fs) t.fields.push_back(std::move(f));
+}
+template <class S>
+void append(Table<S>& t, Rule<S> r) {
+  t.rules.push_back(std::move(r));
+}
+}  // namespace detail
+
+/// The table of S from its entries in order: fields, nested() lists, rules.
+template <class S, class... Entries>
+Table<S> tableOf(Entries&&... entries) {
+  Table<S> t;
+  (detail::append<S>(t, std::forward<Entries>(entries)), ...);
+  return t;
+}
+
 }  // namespace edgevio::options
+
+/// In an options struct: the constructor that sets the table's defaults, and
+/// the table's declaration.
+#define EDGEVIO_OPTIONS(Struct)                                   \
+  Struct() { ::edgevio::options::setDefaults(*this); }            \
+  static const ::edgevio::options::Table<Struct>& table();
+
+/// After the struct: its table, from number(), choice() and nested() entries.
+#define EDGEVIO_OPTIONS_TABLE(Struct, ...)                                      \
+  inline const ::edgevio::options::Table<Struct>& Struct::table() {             \
+    using S = Struct;                                                           \
+    using namespace ::edgevio::options;                                         \
+    static const Table<S> t = tableOf<S>(__VA_ARGS__);                          \
+    return t;                                                                   \
+  }

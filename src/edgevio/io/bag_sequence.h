@@ -30,14 +30,10 @@ class BagSequence final : public Sequence {
 
   std::string name() const override;
   std::string location() const override;
-  const camera::StereoRig& calibration() const override { return rig_; }
-  const std::vector<imu::ImuSample>& imu() const override { return imu_; }
-  const Trajectory& groundTruth() const override { return ground_truth_; }
   std::size_t frameCount() const override { return pairs_.size(); }
   std::int64_t frameTime(std::size_t i) const override { return left_.at(pairs_.at(i).first).stamp_ns; }
   std::optional<cv::Mat> leftImage(std::size_t i) override;
   std::function<cv::Mat()> rightImageLoader(std::size_t i) const override;
-  const std::vector<std::string>& warnings() const override { return warnings_; }
   std::size_t unreadableImages() const override { return 0; }
   std::size_t cameraFrames(int cam) const override { return (cam == 0 ? left_ : right_).size(); }
 
@@ -63,14 +59,10 @@ class BagSequence final : public Sequence {
   std::string path_;
   mutable std::mutex mutex_;  ///< the reader: the driver and the tracking thread both read images
   std::unique_ptr<RosbagReader> reader_;
-  camera::StereoRig rig_;
   BagTopics topics_;
   std::vector<std::uint32_t> image_connections_[2], imu_connections_, groundtruth_connections_;
-  std::vector<imu::ImuSample> imu_;
-  Trajectory ground_truth_;
   std::vector<ImageRef> left_, right_;
   std::vector<std::pair<std::size_t, std::size_t>> pairs_;
-  std::vector<std::string> warnings_;
 };
 
 /// A bag's pose topic (PoseStamped, TransformStamped or Odometry; empty

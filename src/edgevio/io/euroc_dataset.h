@@ -51,14 +51,10 @@ class EurocDataset final : public Sequence {
   // Sequence
   std::string name() const override;
   std::string location() const override;
-  const camera::StereoRig& calibration() const override { return rig_; }
-  const std::vector<imu::ImuSample>& imu() const override { return imu_; }
-  const Trajectory& groundTruth() const override { return ground_truth_; }
   std::size_t frameCount() const override { return pairs_.size(); }
   std::int64_t frameTime(std::size_t i) const override { return pairs_.at(i).t_ns; }
   std::optional<cv::Mat> leftImage(std::size_t i) override { return loadImage(i, 0); }
   std::function<cv::Mat()> rightImageLoader(std::size_t i) const override;
-  const std::vector<std::string>& warnings() const override { return warnings_; }
   std::size_t unreadableImages() const override { return unreadable_[0] + unreadable_[1]; }
   std::size_t cameraFrames(int cam) const override { return rows_[cam] - unreadable_[cam]; }
 
@@ -88,11 +84,7 @@ class EurocDataset final : public Sequence {
 
   DatasetOptions options_;
   std::string mav0_;
-  camera::StereoRig rig_;
   std::vector<StereoRecord> pairs_;
-  std::vector<imu::ImuSample> imu_;
-  Trajectory ground_truth_;
-  std::vector<std::string> warnings_;
   std::size_t rows_[2] = {0, 0};
   std::size_t unreadable_[2] = {0, 0};
   std::size_t unpaired_[2] = {0, 0};

@@ -25,10 +25,10 @@ class Sequence {
   virtual std::string name() const = 0;
   /// Where it was read from, as an absolute path.
   virtual std::string location() const = 0;
-  virtual const camera::StereoRig& calibration() const = 0;
-  virtual const std::vector<imu::ImuSample>& imu() const = 0;
+  const camera::StereoRig& calibration() const { return rig_; }
+  const std::vector<imu::ImuSample>& imu() const { return imu_; }
   /// Ground truth, empty when the sequence has none.
-  virtual const Trajectory& groundTruth() const = 0;
+  const Trajectory& groundTruth() const { return ground_truth_; }
 
   /// Stereo frames (pairs of left and right images), in time order.
   virtual std::size_t frameCount() const = 0;
@@ -42,11 +42,18 @@ class Sequence {
   virtual std::function<cv::Mat()> rightImageLoader(std::size_t i) const = 0;
 
   /// Warnings collected so far (opening and every image read).
-  virtual const std::vector<std::string>& warnings() const = 0;
+  const std::vector<std::string>& warnings() const { return warnings_; }
   /// Images that were missing or did not decode so far.
   virtual std::size_t unreadableImages() const = 0;
   /// Readable images of camera `cam` (0 left, 1 right), paired or not.
   virtual std::size_t cameraFrames(int cam) const = 0;
+
+ protected:
+  // What every sequence has, filled by the reader when it opens.
+  camera::StereoRig rig_;
+  std::vector<imu::ImuSample> imu_;
+  Trajectory ground_truth_;
+  std::vector<std::string> warnings_;
 };
 
 /// The topics of a ROS bag to read (empty: found by their message types).

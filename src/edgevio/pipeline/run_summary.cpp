@@ -54,41 +54,44 @@ void strings(JsonWriter& j, const std::vector<std::string>& v) {
   for (const std::string& x : v) j.value(x);
   j.endArray();
 }
+/// Writes one member of the summary as a JSON value.
+template <auto M>
+void member(JsonWriter& j, const RunSummary& s) {
+  j.value(s.*M);
+}
 }  // namespace
 
 const std::vector<SummaryField>& summaryFields() {
   using S = RunSummary;
   using J = JsonWriter;
   static const std::vector<SummaryField> fields = {
-      {"mode", "edge-only | edge+loop | edge+imu | edge+imu+loop", [](J& j, const S& s) { j.value(s.mode); }},
-      {"sequence", "the sequence's name (its folder's)", [](J& j, const S& s) { j.value(s.sequence); }},
+      {"mode", "edge-only | edge+loop | edge+imu | edge+imu+loop", member<&S::mode>},
+      {"sequence", "the sequence's name (its folder's)", member<&S::sequence>},
       {"dataset", "where it was read from (absolute; `edgevio eval --results` finds the ground truth there)",
-       [](J& j, const S& s) { j.value(s.dataset); }},
-      {"skip", "frames skipped between processed ones (--skip)", [](J& j, const S& s) { j.value(s.skip); }},
-      {"frames", "frames processed (rows of frames.csv)", [](J& j, const S& s) { j.value(s.frames); }},
-      {"keyframes", "keyframes made", [](J& j, const S& s) { j.value(s.keyframes); }},
-      {"self_check_failures", "alignments that failed their self check", [](J& j, const S& s) { j.value(s.self_check_failures); }},
+       member<&S::dataset>},
+      {"skip", "frames skipped between processed ones (--skip)", member<&S::skip>},
+      {"frames", "frames processed (rows of frames.csv)", member<&S::frames>},
+      {"keyframes", "keyframes made", member<&S::keyframes>},
+      {"self_check_failures", "alignments that failed their self check", member<&S::self_check_failures>},
       {"gyro_check_realignments", "alignments redone because their rotation was far from the gyroscope's",
-       [](J& j, const S& s) { j.value(s.gyro_check_realignments); }},
+       member<&S::gyro_check_realignments>},
       {"translation_check_realignments", "alignments redone because their translation was far from the IMU's",
-       [](J& j, const S& s) { j.value(s.translation_check_realignments); }},
-      {"external_check_rejections", "tracking links the external check refused",
-       [](J& j, const S& s) { j.value(s.external_check_rejections); }},
-      {"estimator_resets", "restarts of the window (IMU gaps, estimates that blew up)",
-       [](J& j, const S& s) { j.value(s.estimator_resets); }},
-      {"loop_closures", "loop links that entered the window", [](J& j, const S& s) { j.value(s.loop_closures); }},
-      {"back_links", "back links that entered the window", [](J& j, const S& s) { j.value(s.back_links); }},
-      {"skipped_unreadable_frames", "images that were missing or did not decode", [](J& j, const S& s) { j.value(s.skipped_unreadable); }},
-      {"realtime", "true: frames were released at their timestamps (--realtime)", [](J& j, const S& s) { j.value(s.realtime); }},
-      {"dropped_frames", "real time: frames dropped because the pipeline was behind", [](J& j, const S& s) { j.value(s.dropped_frames); }},
+       member<&S::translation_check_realignments>},
+      {"external_check_rejections", "tracking links the external check refused", member<&S::external_check_rejections>},
+      {"estimator_resets", "restarts of the window (IMU gaps, estimates that blew up)", member<&S::estimator_resets>},
+      {"loop_closures", "loop links that entered the window", member<&S::loop_closures>},
+      {"back_links", "back links that entered the window", member<&S::back_links>},
+      {"skipped_unreadable_frames", "images that were missing or did not decode", member<&S::skipped_unreadable>},
+      {"realtime", "true: frames were released at their timestamps (--realtime)", member<&S::realtime>},
+      {"dropped_frames", "real time: frames dropped because the pipeline was behind", member<&S::dropped_frames>},
       {"static_initialization", "true: the IMU was still at the start, and gave gravity and the gyroscope bias",
-       [](J& j, const S& s) { j.value(s.static_initialization); }},
-      {"failed", "true: the run lost track or diverged", [](J& j, const S& s) { j.value(s.failed); }},
-      {"failure", "why", [](J& j, const S& s) { j.value(s.failure); }},
-      {"duration_s", "the sequence's length [s]", [](J& j, const S& s) { j.value(s.duration_s); }},
-      {"wall_s", "the run's wall time [s]", [](J& j, const S& s) { j.value(s.wall_s); }},
-      {"realtime_factor", "duration_s / wall_s", [](J& j, const S& s) { j.value(s.realtime_factor); }},
-      {"peak_rss_mb", "peak resident memory of the process [MB]", [](J& j, const S& s) { j.value(s.peak_rss_mb); }},
+       member<&S::static_initialization>},
+      {"failed", "true: the run lost track or diverged", member<&S::failed>},
+      {"failure", "why", member<&S::failure>},
+      {"duration_s", "the sequence's length [s]", member<&S::duration_s>},
+      {"wall_s", "the run's wall time [s]", member<&S::wall_s>},
+      {"realtime_factor", "duration_s / wall_s", member<&S::realtime_factor>},
+      {"peak_rss_mb", "peak resident memory of the process [MB]", member<&S::peak_rss_mb>},
       {"latency_ms", "frames.csv's latency_ms over the run: {p50, p99, max} (nearest-rank percentiles) [ms]",
        [](J& j, const S& s) {
          j.beginObject();
