@@ -60,10 +60,11 @@ void VioEstimator::initialize(std::int64_t t_ns, const imu::NavState& x, bool ve
   window_.prior.b = Eigen::VectorXd::Zero(15);
 }
 
-void VioEstimator::restartAfterGap(std::int64_t t_ns, const SE3& T_w_b) {
+void VioEstimator::restartAfterGap(std::int64_t t_ns, const SE3& T_w_b, const Vec3& v_w) {
   imu::NavState x = newest();
   x.R_w_b = T_w_b.so3();
   x.p_w = T_w_b.translation();
+  x.v_w = v_w;
   initialize(t_ns, x, false, true);
 }
 
@@ -94,6 +95,11 @@ std::optional<imu::NavState> VioEstimator::stateAt(std::int64_t t_ns) const {
 std::optional<imu::Preintegration> VioEstimator::preintegrateTo(const std::vector<imu::ImuSample>& imu, std::int64_t t_ns) const {
   const imu::NavState& x = newest();
   return imu::preintegrate(imu, newestTime(), t_ns, x.b_a, x.b_g, noise_, options_.max_imu_gap_s);
+}
+
+bool VioEstimator::imuCovers(const std::vector<imu::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns) const {
+  const imu::NavState& x = newest();
+  return imu::preintegrate(imu, t0_ns, t1_ns, x.b_a, x.b_g, noise_, options_.max_imu_gap_s).has_value();
 }
 
 void VioEstimator::addState(std::int64_t t_ns, imu::Preintegration pre) {

@@ -67,9 +67,9 @@ class VioEstimator {
   void initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known, bool attitude_known);
   bool initialized() const { return !window_.states.empty(); }
   /// Restarts the window at t_ns after the inertial chain broke (an IMU gap):
-  /// the newest state's attitude and biases carry over at the pose T_w_b, the
-  /// velocity is estimated anew.
-  void restartAfterGap(std::int64_t t_ns, const geometry::SE3& T_w_b);
+  /// the newest state's biases carry over, at the pose T_w_b; v_w is the
+  /// velocity's starting value (free in the window: estimated anew).
+  void restartAfterGap(std::int64_t t_ns, const geometry::SE3& T_w_b, const Vec3& v_w);
 
   const imu::NavState& newest() const { return window_.states.back().x; }
   std::int64_t newestTime() const { return window_.states.back().t_ns; }
@@ -80,6 +80,8 @@ class VioEstimator {
   /// Preintegrates the IMU from the newest state to t_ns at its biases;
   /// nullopt without IMU coverage or across a gap longer than max_imu_gap_s.
   std::optional<imu::Preintegration> preintegrateTo(const std::vector<imu::ImuSample>& imu, std::int64_t t_ns) const;
+  /// Whether the IMU covers [t0_ns, t1_ns] with no gap longer than max_imu_gap_s.
+  bool imuCovers(const std::vector<imu::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns) const;
 
   /// Appends a state at t_ns linked to the newest by `pre`, initialised at the IMU prediction.
   void addState(std::int64_t t_ns, imu::Preintegration pre);

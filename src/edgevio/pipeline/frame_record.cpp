@@ -68,6 +68,8 @@ constexpr FrameColumn kColumns[] = {
       {"est_final_cost", "-", "... and after them", [](const R& r) { return real(r.estimator.final_cost); }, 6, true},
       {"marginalized", "-", "which state two-way marginalisation removed (see below)",
        [](const R& r) { return text(options::nameOf(estimator::kMarginalizationChoices, r.estimator.marginalized)); }},
+      {"restart", "-", "why the window restarted at this frame (see below), or -",
+       [](const R& r) { return text(options::nameOf(kWindowRestartChoices, r.restart)); }},
       {"back_links", "-", "a new keyframe's back links that entered the window", [](const R& r) { return integer(r.back_links); }},
       {"loop_candidates", "-", "loop-closure candidates of a new keyframe", [](const R& r) { return integer(r.loop_candidates); }},
       {"loop_accepted", "-", "loop links that entered the window", [](const R& r) { return integer(r.loop_links); }},

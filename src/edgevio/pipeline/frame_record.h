@@ -27,6 +27,10 @@ inline constexpr options::Choice<ExternalCheck> kExternalCheckChoices[] = {
 
 /// Why the estimator's window restarted at a frame.
 enum class WindowRestart { kNone, kImuGap, kBlowUp };
+inline constexpr options::Choice<WindowRestart> kWindowRestartChoices[] = {
+    {WindowRestart::kNone, "-", "the window went on"},
+    {WindowRestart::kImuGap, "imu_gap", "the IMU is back after a gap the edges bridged: a new window from the previous frame"},
+    {WindowRestart::kBlowUp, "blow_up", "the estimate blew up (see events): a new window at this frame"}};
 
 struct FrameRecord {
   std::int64_t t_ns = 0;

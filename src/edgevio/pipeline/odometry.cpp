@@ -37,7 +37,10 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   // The alignment's T_nr as the body's motion T_bn_br (what ground truth
   // gives directly: T_w_bn⁻¹·T_w_br), so the front end can be judged alone.
   r.link_T_bn_br = T_b_c_ * r.alignment.T_nr * T_b_c_.inverse();
+  t_before_last_ = t_prev_;
+  T_w_b_before_last_ = T_w_b_last_;
   t_prev_ = r.t_ns;
+  T_w_b_last_ = r.T_w_b;
   return r;
 }
 
@@ -54,7 +57,6 @@ void Odometry::processWithoutWindow(tracking::PreparedFrame frame, FrameRecord* 
     r->T_w_b = tracked.T_w_b;
     decideKeyframe(std::move(frame), tracked.T_w_b, tracked.vote, r);
   }
-  T_w_b_last_ = r->T_w_b;
   if (windowed() && (imu_started || !mode_.imu)) startWindow(t, r);
 }
 
@@ -79,7 +81,11 @@ void Odometry::processInWindow(tracking::PreparedFrame frame, FrameRecord* r) {
   tracking::Prediction p;
   if (mode_.imu) {
     pre = estimator_->preintegrateTo(imu_, t);
-    if (!pre) return bridgeImuGap(std::move(frame), r);
+    if (!pre) {
+      if (!estimator_->imuCovers(imu_, t_prev_, t)) return bridgeImuGap(std::move(frame), r);
+      restartAfterImuGap(r);
+      pre = estimator_->preintegrateTo(imu_, t);
+    }
     p.T_w_b = poseOf(imu::predictState(last, *pre));
     p.reliable = tracking::PredictionReliability::kPose;
     // The gyroscope alone, with the window's bias, since the keyframe: the
@@ -113,19 +119,34 @@ void Odometry::processInWindow(tracking::PreparedFrame frame, FrameRecord* r) {
 }
 
 void Odometry::bridgeImuGap(tracking::PreparedFrame frame, FrameRecord* r) {
-  // No IMU coverage between the frames: track from the last pose, and start
-  // a new window here (the inertial chain is broken); attitude and biases
-  // carry over, the velocity is estimated anew.
+  // No IMU between the previous frame and this one: the edges carry the pose,
+  // tracked against the keyframe from a constant-velocity prediction (the
+  // last two frames' motion, continued), and the window waits, holding its
+  // last state, until the IMU is back.
+  if (estimator_->newestTime() == t_prev_) r->events.push_back("IMU gap: tracked by the edges alone until the IMU is back");
   tracking::Prediction p;
-  p.T_w_b = poseOf(estimator_->newest());
+  p.T_w_b = T_w_b_last_;
+  if (t_before_last_ >= 0 && t_before_last_ < t_prev_)
+    p.T_w_b = geometry::interpolate(T_w_b_before_last_, T_w_b_last_,
+                                    1.0 + static_cast<double>(r->t_ns - t_prev_) / static_cast<double>(t_prev_ - t_before_last_));
   const Tracked tracked = track(frame, p, r);
   r->T_w_b = tracked.T_w_b;
   decideKeyframe(std::move(frame), tracked.T_w_b, tracked.vote, r);
-  estimator_->restartAfterGap(r->t_ns, tracked.T_w_b);
+}
+
+void Odometry::restartAfterImuGap(FrameRecord* r) {
+  // The IMU covers the time since the previous frame again: the window
+  // restarts once, at that frame, at the pose the edges carried it to, with
+  // the biases from before the gap. The velocity starts from the last two
+  // frames' (the state before the gap is stale by the gap's length) and is
+  // free in the window.
+  Vec3 v_w = estimator_->newest().v_w;
+  if (t_before_last_ >= 0 && t_before_last_ < t_prev_)
+    v_w = (T_w_b_last_.translation() - T_w_b_before_last_.translation()) / toSeconds(t_prev_ - t_before_last_);
+  estimator_->restartAfterGap(t_prev_, T_w_b_last_, v_w);
   r->restart = WindowRestart::kImuGap;
-  r->events.push_back("no IMU coverage (or an IMU gap) since the previous frame: estimator restarted");
-  keyframeForRestart(r->t_ns, r);
-  r->state = estimator_->newest();
+  r->events.push_back("IMU back after a gap: estimator restarted at the previous frame");
+  keyframeForRestart(t_prev_, r);
 }
 
 tracking::Prediction Odometry::gyroPrediction(const SE3& T_w_b_last, std::int64_t t_ns) const {

@@ -70,6 +70,7 @@ class Odometry {
   void startWindow(std::int64_t t_ns, FrameRecord* r);
   void processInWindow(tracking::PreparedFrame frame, FrameRecord* r);
   void bridgeImuGap(tracking::PreparedFrame frame, FrameRecord* r);
+  void restartAfterImuGap(FrameRecord* r);
 
   tracking::Prediction gyroPrediction(const geometry::SE3& T_w_b_last, std::int64_t t_ns) const;
   /// Aligns the frame to the current keyframe, promoting the previous frame when that fails.
@@ -103,8 +104,8 @@ class Odometry {
   std::optional<estimator::VioEstimator> estimator_;  ///< the window's modes
   KeyframeStore keyframes_;
   std::optional<Previous> previous_;
-  geometry::SE3 T_w_b_last_;  ///< the last frame's pose
-  std::int64_t t_first_ = -1, t_prev_ = -1;
+  geometry::SE3 T_w_b_last_, T_w_b_before_last_;  ///< the poses of the last two frames (at t_prev_, t_before_last_)
+  std::int64_t t_first_ = -1, t_prev_ = -1, t_before_last_ = -1;
 };
 
 }  // namespace edgevio::pipeline

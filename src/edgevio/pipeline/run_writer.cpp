@@ -86,6 +86,7 @@ void writeOutputsReference(std::ostream& out) {
   writeChoices(out, "prediction_check", tracking::kPredictionCheckChoices);
   writeChoices(out, "external_check", kExternalCheckChoices);
   writeChoices(out, "marginalized", estimator::kMarginalizationChoices);
+  writeChoices(out, "restart", kWindowRestartChoices);
   out << "\n## summary.json\n\n| key | meaning |\n|---|---|\n";
   for (const SummaryField& f : summaryFields()) out << "| `" << f.key << "` | " << cell(f.meaning) << " |\n";
 }
