@@ -7,6 +7,7 @@
 #include "edgevio/cli/commands.h"
 #include "edgevio/config/config.h"
 #include "edgevio/pipeline/run_writer.h"
+#include "edgevio/sim/faults.h"
 
 int main(int argc, char** argv) {
   using namespace edgevio;
@@ -81,6 +82,9 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--blur-ms", sim.blur_ms, "Exposure time for motion blur in ms (0: none)");
   sim_cmd->add_flag("--exposure-changes", sim.exposure_changes, "Auto-exposure drift and sudden lighting changes");
   sim_cmd->add_option("--drop-rate", sim.drop_rate, "Probability that a cam1 frame is dropped");
+  sim_cmd->add_option("--fault", sim.faults,
+                      "A sensor fault, repeatable: KIND[:at=S,for=S,every=S,size=X], times in seconds after the first frame; KIND: " +
+                          options::choiceList(sim::kFaultKindChoices));
   sim_cmd->add_option("--skip", sim.skip, "Keep every (K+1)-th frame");
   sim_cmd->add_option("--calib", sim.calib, "Calibration: ASL folder or Kalibr camchain YAML (default: EuRoC)");
   sim_cmd->add_option("--vignetting", sim.vignetting, "Vignetting strength k (default: config sim.vignetting)");

@@ -186,6 +186,29 @@ TEST(BagSequence, BadBagsAreErrorsNamingTheBagTopicAndMessage) {
   expectInputError(open(cut), {cut, "topic /imu0, message 17", "not a complete sensor_msgs/Imu"});
 }
 
+TEST(BagSequence, ARepeatedImageStampSkipsTheImageWithAWarning) {
+  // Left image 4 carries image 3's stamp (a driver's clock glitch): it is
+  // skipped and counted, and the right image 4 has no partner.
+  TempDir out;
+  std::size_t frames = 0;
+  const std::string bag = bagWith(out, "repeat.bag", [&](RosbagWriter& w, EurocDataset& f) {
+    frames = f.frameCount();
+    const std::uint32_t ids[2] = {w.addConnection("/cam0/image_raw", ros::kImage), w.addConnection("/cam1/image_raw", ros::kImage)};
+    for (std::size_t i = 0; i < f.frameCount(); ++i)
+      for (int cam = 0; cam < 2; ++cam) {
+        const std::int64_t stamp = cam == 0 && i == 4 ? f.frameTime(3) : f.frameTime(i);
+        w.write(ids[cam], f.frameTime(i), ros::serializeImage(stamp, "c", cam == 0 ? *f.leftImage(i) : f.rightImageLoader(i)()));
+      }
+    writeImu(w, f);
+  });
+  BagSequence s({bag, "", {}}, DatasetOptions{});
+  EXPECT_EQ(s.frameCount(), frames - 1);
+  EXPECT_EQ(s.unreadableImages(), 1u);
+  std::string all;
+  for (const std::string& w : s.warnings()) all += w + "\n";
+  test::expectContainsAll(all, {"topic /cam0/image_raw, message 4: duplicate header stamp, image skipped"});
+}
+
 TEST(BagSequence, AMissingCalibrationSaysWhichFilesAndWhatToPass) {
   TempDir data, out;
   EurocDataset folder(miniFolder(data), DatasetOptions{});

@@ -112,15 +112,23 @@ TEST(EurocDataset, StereoToleranceIsAConfigValue) {
   EXPECT_EQ(EurocDataset(root, DatasetOptions{}).stereoPairs().size(), 5u);
 }
 
-TEST(EurocDataset, DecreasingOrDuplicateImageTimestampIsAnError) {
+TEST(EurocDataset, DecreasingOrDuplicateImageTimestampSkipsTheRowWithAWarning) {
+  // A driver's clock glitch: rows 4 (back in time) and 5 (a repeat) are skipped.
   TempDir dir;
   const std::string root = test::writeMiniDataset(dir);
   dir.write("mav0/cam0/data.csv",
-            "#timestamp [ns],filename\n1000000000,1000000000.png\n1100000000,1100000000.png\n"
-            "1050000000,1050000000.png\n");
-  expectInputError([&] { EurocDataset(root, DatasetOptions{}); }, {"cam0/data.csv:4", "decreasing"});
-  dir.write("mav0/cam0/data.csv", "#t,f\n1000000000,1000000000.png\n1000000000,1000000000.png\n");
-  expectInputError([&] { EurocDataset(root, DatasetOptions{}); }, {"cam0/data.csv:3", "duplicate"});
+            "#timestamp [ns],filename\n1000000000,1000000000.png\n1100000000,1100000000.png\n1050000000,1050000000.png\n"
+            "1100000000,1100000000.png\n1150000000,1150000000.png\n1200000000,1200000000.png\n");
+  EurocDataset d(root, DatasetOptions{});
+  EXPECT_EQ(d.cameraRows(0), 6u);
+  EXPECT_EQ(d.unreadableImages(0), 2u);
+  ASSERT_EQ(d.frameCount(), 4u);  // 1.00, 1.10, 1.15, 1.20 s; cam1's 1.05 s has no partner
+  EXPECT_EQ(d.frameTime(1), 1100000000);
+  EXPECT_EQ(d.unpairedFrames(1), 1u);
+  std::string all;
+  for (const std::string& w : d.warnings()) all += w + "\n";
+  test::expectContainsAll(all, {"cam0/data.csv:4: decreasing timestamp 1050000000, frame skipped",
+                                "cam0/data.csv:5: duplicate timestamp 1100000000, frame skipped"});
 }
 
 TEST(EurocDataset, MalformedRowsAreErrorsNamingFileAndLine) {

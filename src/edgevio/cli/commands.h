@@ -34,6 +34,7 @@ int eval(const EvalArgs& args, std::ostream& out, std::ostream& err);
 
 struct SimulateArgs {
   std::string out, trajectory, scenario, imu = "synth", noise = "on", calib, config;
+  std::vector<std::string> faults;  ///< --fault specs (sim/faults.h)
   double start_s = 0.0;
   double duration_s = -1.0;  ///< < 0: default
   unsigned long long seed = 1;

@@ -29,11 +29,12 @@ int simulate(const SimulateArgs& a, std::ostream& out, std::ostream& err) {
     r.drop_rate = a.drop_rate;
     r.skip = a.skip;
     r.calib = a.calib;
+    for (const std::string& spec : a.faults) r.faults.push_back(sim::parseFault(spec));
     Progress progress("stereo frames rendered", Progress::stderrIsTerminal());
     const sim::SimSummary s =
         sim::simulate(r, config.sim, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
-    out << "wrote " << a.out << "/mav0: " << s.frames << " stereo frames (" << s.dropped_cam1
-        << " cam1 frames dropped), " << s.imu_samples << " IMU samples, " << s.duration_s << " s\n";
+    out << "wrote " << a.out << "/mav0: " << s.frames << " stereo frames (" << s.dropped_cam1 + s.fault_dropped[1]
+        << " cam1 and " << s.fault_dropped[0] << " cam0 images dropped), " << s.imu_samples << " IMU samples, " << s.duration_s << " s\n";
     if (s.position_steps_removed > 0)
       out << "trajectory: " << s.position_steps_removed
           << " position steps removed (tracker glitches; sim.trajectory_max_accel_mps2 = " << config.sim.trajectory_max_accel_mps2

@@ -51,15 +51,10 @@ int leftness(const std::string& topic) {
   return 0;
 }
 
-/// Orders a topic's messages by their record time, checks that their stamps
-/// increase, and numbers them (the index errors name).
-template <class T, class Stamp>
-void orderByRecordTime(std::vector<std::pair<BagMessageRef, T>>* items, const std::string& where, Stamp stamp) {
+/// Orders a topic's messages by their record time (the index messages are numbered by).
+template <class T>
+void sortByRecordTime(std::vector<std::pair<BagMessageRef, T>>* items) {
   std::stable_sort(items->begin(), items->end(), [](const auto& a, const auto& b) { return a.first.record_time_ns < b.first.record_time_ns; });
-  for (std::size_t k = 1; k < items->size(); ++k) {
-    const std::int64_t dt = stamp((*items)[k].second) - stamp((*items)[k - 1].second);
-    if (dt <= 0) throw InputError(where + ", message " + std::to_string(k) + ": " + (dt == 0 ? "duplicate" : "decreasing") + " header stamp");
-  }
 }
 
 
@@ -220,11 +215,30 @@ void BagSequence::readMessages(const DatasetOptions& options) {
     if (on(groundtruth_connections_, ref)) gt.push_back(poseMessage(*reader_, ref, where(topics_.groundtruth, gt.size())));
   }
   for (int cam = 0; cam < 2; ++cam) {
-    orderByRecordTime(&images[cam], path_ + ", topic " + (cam == 0 ? topics_.cam0 : topics_.cam1), [](std::int64_t t) { return t; });
-    for (std::size_t k = 0; k < images[cam].size(); ++k) (cam == 0 ? left_ : right_).push_back({images[cam][k].first, images[cam][k].second, k});
+    // A stamp that repeats or goes back (a driver's clock glitch) loses its
+    // image, with a warning, as in an ASL folder.
+    sortByRecordTime(&images[cam]);
+    std::int64_t last = -1;
+    for (std::size_t k = 0; k < images[cam].size(); ++k) {
+      const auto& [ref, stamp] = images[cam][k];
+      if (stamp <= last) {
+        ++out_of_order_[cam];
+        warnings_.push_back(path_ + ", topic " + (cam == 0 ? topics_.cam0 : topics_.cam1) + ", message " + std::to_string(k) + ": " +
+                            (stamp == last ? "duplicate" : "decreasing") + " header stamp, image skipped");
+        continue;
+      }
+      last = stamp;
+      (cam == 0 ? left_ : right_).push_back({ref, stamp, k});
+    }
   }
-  orderByRecordTime(&imu, path_ + ", topic " + topics_.imu, [](const imu::ImuSample& s) { return s.t_ns; });
-  for (const auto& [ref, s] : imu) imu_.push_back(s);
+  sortByRecordTime(&imu);
+  for (std::size_t k = 0; k < imu.size(); ++k) {
+    const std::int64_t dt = k == 0 ? 1 : imu[k].second.t_ns - imu[k - 1].second.t_ns;
+    if (dt <= 0)
+      throw InputError(path_ + ", topic " + topics_.imu + ", message " + std::to_string(k) + ": " + (dt == 0 ? "duplicate" : "decreasing") +
+                       " header stamp");
+    imu_.push_back(imu[k].second);
+  }
   checkImu(options);
   ground_truth_ = byStamp(std::move(gt));
 }

@@ -34,7 +34,7 @@ class BagSequence final : public Sequence {
   std::int64_t frameTime(std::size_t i) const override { return left_.at(pairs_.at(i).first).stamp_ns; }
   std::optional<cv::Mat> leftImage(std::size_t i) override;
   std::function<cv::Mat()> rightImageLoader(std::size_t i) const override;
-  std::size_t unreadableImages() const override { return 0; }
+  std::size_t unreadableImages() const override { return out_of_order_[0] + out_of_order_[1]; }
   std::size_t cameraFrames(int cam) const override { return (cam == 0 ? left_ : right_).size(); }
 
   /// The topics it reads (cam0, cam1, imu, ground truth or "").
@@ -63,6 +63,7 @@ class BagSequence final : public Sequence {
   std::vector<std::uint32_t> image_connections_[2], imu_connections_, groundtruth_connections_;
   std::vector<ImageRef> left_, right_;
   std::vector<std::pair<std::size_t, std::size_t>> pairs_;
+  std::size_t out_of_order_[2] = {0, 0};  ///< images skipped for a repeated or decreasing stamp
 };
 
 /// A bag's pose topic (PoseStamped, TransformStamped or Odometry; empty

@@ -46,11 +46,14 @@ std::vector<ImageRecord> EurocDataset::readImageList(int cam) {
     ImageRecord rec;
     rec.t_ns = r.integer(0);
     rec.line = r.line();
-    if (rec.t_ns <= last)
-      r.fail(std::string(rec.t_ns == last ? "duplicate" : "decreasing") +
-             " timestamp: image rows must be in strictly increasing time order");
-    last = rec.t_ns;
     ++rows_[cam];
+    if (rec.t_ns <= last) {
+      ++unreadable_[cam];
+      warnings_.push_back(r.path() + ":" + std::to_string(r.line()) + ": " + (rec.t_ns == last ? "duplicate" : "decreasing") +
+                          " timestamp " + std::to_string(rec.t_ns) + ", frame skipped (image rows must be in increasing time order)");
+      continue;
+    }
+    last = rec.t_ns;
     const std::string& name = r.field(1);
     if (name.empty() || name.find("..") != std::string::npos || name[0] == '/')
       r.fail("filename '" + name + "' must be a plain file name inside data/");

@@ -6,10 +6,11 @@
 // stereo pair at a time (loadStereo), so a sequence is never held in memory.
 //
 // Outcomes for bad input (issue #2):
-//  - image row whose file is missing or does not decode: skipped, counted, one warning;
+//  - image row whose file is missing or does not decode, or whose timestamp
+//    repeats or goes back (a driver's clock glitch): skipped, counted, one warning;
 //  - frames without a partner in the other camera: skipped, counted;
-//  - malformed rows, NaN/inf, duplicate or decreasing timestamps, an image whose
-//    size differs from the calibration: InputError naming file and line;
+//  - malformed rows, NaN/inf, duplicate or decreasing IMU timestamps, an image
+//    whose size differs from the calibration: InputError naming file and line;
 //  - IMU gaps longer than DatasetOptions::imu_gap_warning_s: a warning.
 #include <opencv2/core.hpp>
 

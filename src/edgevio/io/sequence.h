@@ -43,7 +43,7 @@ class Sequence {
 
   /// Warnings collected so far (opening and every image read).
   const std::vector<std::string>& warnings() const { return warnings_; }
-  /// Images that were missing or did not decode so far.
+  /// Images that were missing, did not decode, or were out of time order (so far).
   virtual std::size_t unreadableImages() const = 0;
   /// Readable images of camera `cam` (0 left, 1 right), paired or not.
   virtual std::size_t cameraFrames(int cam) const = 0;

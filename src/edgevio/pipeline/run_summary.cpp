@@ -81,7 +81,7 @@ const std::vector<SummaryField>& summaryFields() {
       {"estimator_resets", "restarts of the window (IMU gaps, estimates that blew up)", member<&S::estimator_resets>},
       {"loop_closures", "loop links that entered the window", member<&S::loop_closures>},
       {"back_links", "back links that entered the window", member<&S::back_links>},
-      {"skipped_unreadable_frames", "images that were missing or did not decode", member<&S::skipped_unreadable>},
+      {"skipped_unreadable_frames", "images that were missing, did not decode, or were out of time order", member<&S::skipped_unreadable>},
       {"realtime", "true: frames were released at their timestamps (--realtime)", member<&S::realtime>},
       {"dropped_frames", "real time: frames dropped because the pipeline was behind", member<&S::dropped_frames>},
       {"static_initialization", "true: the IMU was still at the start, and gave gravity and the gyroscope bias",

@@ -16,6 +16,7 @@
 #include "edgevio/io/imu_io.h"
 #include "edgevio/io/png_writer.h"
 #include "edgevio/io/trajectory_io.h"
+#include "edgevio/sim/faults.h"
 #include "edgevio/sim/imu_synth.h"
 #include "edgevio/sim/random.h"
 #include "edgevio/sim/renderer.h"
@@ -67,7 +68,9 @@ void writeSimulationYaml(const std::string& path, const SimRequest& r, const Sim
     << "\nduration_s: " << r.duration_s << "\nseed: " << r.seed << "\nimu: \"" << r.imu << "\"\nnoise: "
     << (r.noise ? "true" : "false") << "\nblur_ms: " << r.blur_ms << "\nexposure_changes: "
     << (r.exposure_changes ? "true" : "false") << "\ndrop_rate: " << r.drop_rate << "\nskip: " << r.skip
-    << "\ncalib: \"" << r.calib << "\"\nsim:\n";
+    << "\ncalib: \"" << r.calib << "\"\nfaults: [";
+  for (std::size_t i = 0; i < r.faults.size(); ++i) f << (i ? ", " : "") << "\"" << faultSpec(r.faults[i]) << "\"";
+  f << "]\nsim:\n";
   for (const options::Field<SimOptions>& field : SimOptions::table().fields) f << "  " << field.key << ": " << field.format(o) << "\n";
 }
 
@@ -176,7 +179,9 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   for (const char* sub : {"cam0/data", "cam1/data", "imu0", "state_groundtruth_estimate0"}) fs::create_directories(mav0 / sub, ec);
   if (ec || !fs::is_directory(mav0 / "imu0")) throw InputError(req.out_dir, 0, "cannot create the output folder");
   io::writeEurocCalibration(mav0.string(), rig);
-  io::writeImuCsv((mav0 / "imu0" / "data.csv").string(), imu.samples);
+  const auto frame_step = static_cast<std::int64_t>(std::llround(1e9 / rig.camera_rate_hz)) * (req.skip + 1);
+  FaultInjector faults(req.faults, begin_ns, toSeconds(frame_step), req.seed);
+  io::writeImuCsv((mav0 / "imu0" / "data.csv").string(), faults.recordedImu(imu.samples));
   io::Trajectory gt;
   for (std::size_t i = 0; i < imu.samples.size(); ++i) {
     const KinematicState s = spline.evaluate(imu.samples[i].t_ns);
@@ -194,7 +199,6 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
 
   // 5. Images.
   const RayTable rays[2] = {RayTable(rig.cam[0]), RayTable(rig.cam[1])};
-  const auto frame_step = static_cast<std::int64_t>(std::llround(1e9 / rig.camera_rate_hz)) * (req.skip + 1);
   const LightingChanges lighting(begin_ns, end_ns, options.lighting_change_interval_s, options.lighting_change_magnitude, req.seed);
   const int substeps = req.blur_ms > 0 ? std::max(2, static_cast<int>(std::ceil(req.blur_ms / options.blur_substep_ms)) + 1) : 1;
   std::ostringstream csv[2];
@@ -208,7 +212,10 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   RenderOptions ro;
   ro.threads = std::max(1, options.threads / cam_threads);
   double render_s[2] = {0, 0}, write_s[2] = {0, 0};
-  const auto produce = [&](int cam, std::int64_t t, float light_scale, double gain) {
+  // Renders camera cam's image of the frame at t and writes it as <t>.png
+  // (unique even when a fault gives two frames one stamp); false when a
+  // fault dropped it.
+  const auto produce = [&](int cam, std::int64_t t, float light_scale, double gain, bool* written) {
     RenderOptions cam_ro = ro;
     cam_ro.light_scale = light_scale;
     const auto r0 = std::chrono::steady_clock::now();
@@ -225,10 +232,12 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
     fx.gain = options.exposure_gain * gain * (cam == 1 ? 1.0 + options.stereo_brightness_mismatch : 1.0);
     fx.vignetting = options.vignetting;
     fx.noise_sigma = req.noise ? options.image_noise_sigma : 0.0;
-    const cv::Mat image = sensorImage(radiance, rig.cam[cam], fx,
-                                      hashCombine(req.seed, static_cast<std::uint64_t>(t) * 2 + static_cast<std::uint64_t>(cam)));
+    cv::Mat image = sensorImage(radiance, rig.cam[cam], fx,
+                                hashCombine(req.seed, static_cast<std::uint64_t>(t) * 2 + static_cast<std::uint64_t>(cam)));
     const auto r1 = std::chrono::steady_clock::now();
-    io::writePngGray8((mav0 / ("cam" + std::to_string(cam)) / "data" / (std::to_string(t) + ".png")).string(), image,
+    *written = faults.applyToImage(cam, t, &image);
+    if (*written)
+      io::writePngGray8((mav0 / ("cam" + std::to_string(cam)) / "data" / (std::to_string(t) + ".png")).string(), image,
                       options.png_compression);
     const auto r2 = std::chrono::steady_clock::now();
     render_s[cam] += std::chrono::duration<double>(r1 - r0).count();
@@ -243,17 +252,21 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
     double gain = 1.0;
     if (req.exposure_changes)
       gain *= 1.0 + options.exposure_drift_amplitude * std::sin(2 * 3.14159265358979 * t_rel / options.exposure_drift_period_s);
+    const std::int64_t stamp = faults.recordedStamp(k, t);
     std::thread second;
+    bool written[2] = {false, false};
     if (!drop_cam1) {
-      if (cam_threads == 2) second = std::thread(produce, 1, t, light_scale, gain);
-      else produce(1, t, light_scale, gain);
-      csv[1] << t << "," << t << ".png\n";
+      if (cam_threads == 2) second = std::thread(produce, 1, t, light_scale, gain, &written[1]);
+      else produce(1, t, light_scale, gain, &written[1]);
     } else {
       ++summary.dropped_cam1;
     }
-    produce(0, t, light_scale, gain);
-    csv[0] << t << "," << t << ".png\n";
+    produce(0, t, light_scale, gain, &written[0]);
     if (second.joinable()) second.join();
+    for (int cam = 0; cam < 2; ++cam) {
+      if (written[cam]) csv[cam] << stamp << "," << t << ".png\n";
+      summary.fault_dropped[cam] += !written[cam] && !(cam == 1 && drop_cam1);
+    }
     ++summary.frames;
     if (progress) progress(k + 1, total);
   }

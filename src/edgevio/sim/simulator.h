@@ -4,12 +4,16 @@
 //   mav0/cam{0,1}/{data.csv, data/<t>.png, sensor.yaml}, mav0/imu0/{data.csv,
 //   sensor.yaml}, mav0/state_groundtruth_estimate0/data.csv (p, q, v, true
 //   biases at the IMU rate), and simulation.yaml (the request and config used).
+// Faults (sim/faults.h) change what the sensor files report, never the
+// ground truth.
 // Deterministic: the same request, config and seed give byte-identical files.
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
+#include "edgevio/sim/faults.h"
 #include "edgevio/sim/sim_options.h"
 
 namespace edgevio::sim {
@@ -28,11 +32,13 @@ struct SimRequest {
   double drop_rate = 0.0;       ///< probability that a cam1 frame is dropped
   int skip = 0;                 ///< keep every (skip+1)-th frame
   std::string calib;            ///< calibration (ASL folder or Kalibr YAML); empty: EuRoC
+  std::vector<Fault> faults;    ///< what the sensors report wrong (sim/faults.h)
 };
 
 struct SimSummary {
   std::size_t frames = 0;         ///< stereo instants rendered
   std::size_t dropped_cam1 = 0;
+  std::size_t fault_dropped[2] = {0, 0};  ///< images a drop_left / drop_right fault removed
   std::size_t imu_samples = 0;
   int position_steps_removed = 0;  ///< removePositionSteps on the trajectory file (sim.trajectory_max_accel_mps2)
   double duration_s = 0.0;
