@@ -64,7 +64,8 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
   io::writeTrajectoryTum(dir.file("seqA/edge+imu/trajectory_tum.txt"), circle(0.02));
   dir.write("seqA/edge+imu/summary.json",
             "{\"mode\": \"edge+imu\", \"sequence\": \"seqA\", \"failed\": false, \"groundtruth\": \"../../gt.csv\", "
-            "\"realtime_factor\": 7.5, \"latency_ms\": {\"p50\": 12.5, \"p99\": 40.25, \"max\": 51}}");
+            "\"realtime_factor\": 7.5, \"latency_ms\": {\"p50\": 12.5, \"p99\": 40.25, \"max\": 51}, \"lost_intervals\": "
+            "[{\"start_s\": 2, \"end_s\": 2.5, \"reason\": \"a\"}, {\"start_s\": 10, \"end_s\": 11, \"reason\": \"b\"}]}");
   // failed run
   dir.write("seqA/edge-only/summary.json", "{\"mode\": \"edge-only\", \"sequence\": \"seqA\", \"failed\": true}");
   // run without ground truth
@@ -84,13 +85,13 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
   ASSERT_EQ(cli::evalResults(dir.path(), EvalOptions{}, out, err), cli::kExitOk) << err.str();
   const std::string md = test::readFile(dir.file("report.md")), csv = test::readFile(dir.file("report.csv"));
   EXPECT_NE(md.find("4 runs, 3 failed"), std::string::npos) << md;
-  EXPECT_NE(md.find("| seqA | edge+imu | ok |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| seqA | edge+imu | lost 1.5 s |"), std::string::npos) << md;
   EXPECT_NE(md.find("| seqA | edge-only | **FAILED**"), std::string::npos) << md;
   EXPECT_NE(md.find("no ground truth"), std::string::npos) << md;
   EXPECT_NE(md.find("no timestamp overlap"), std::string::npos) << md;
   EXPECT_NE(csv.find("seqA,edge+imu,seqA/edge+imu,ok,,400,se3,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",7.50,0,,12.50,40.25\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",0,,,\n"), std::string::npos) << csv;  // a summary without them: empty fields
+  EXPECT_NE(csv.find(",7.50,0,,12.50,40.25,2,1.500\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",0,,,,0,0.000\n"), std::string::npos) << csv;  // a summary without them: empty fields, nothing lost
 }
 
 TEST(EvalCommand, SegmentsAndErrors) {

@@ -96,21 +96,55 @@ TEST(RunSummary, CountsTheRecords) {
   RunSummary s;
   FrameRecord failed = someRecord(2000000000);
   failed.alignment.self_check_passed = false;
-  for (int i = 0; i < 3; ++i) s.count(someRecord(1000000000 + i), 1000000000, 2);
-  EXPECT_EQ(s.frames, 3u);
-  EXPECT_EQ(s.keyframes, 3u);
-  EXPECT_EQ(s.external_check_rejections, 3u);
-  EXPECT_EQ(s.loop_closures, 6u);
+  for (int i = 0; i < 3; ++i) s.count(someRecord(1000000000 + i), 1000000000);
+  s.count(failed, 1000000000);
+  EXPECT_EQ(s.frames, 4u);
+  EXPECT_EQ(s.keyframes, 4u);
+  EXPECT_EQ(s.external_check_rejections, 4u);
+  EXPECT_EQ(s.loop_closures, 8u);
+  EXPECT_EQ(s.self_check_failures, 1u);
+  s.finish();
   EXPECT_FALSE(s.failed);
-  s.count(failed, 1000000000, 2);
-  EXPECT_FALSE(s.failed);
-  s.count(someRecord(2050000000), 1000000000, 2);  // a passing frame in between: not two in a row
-  s.count(failed, 1000000000, 2);
-  EXPECT_FALSE(s.failed);
-  s.count(failed, 1000000000, 2);
-  EXPECT_TRUE(s.failed);
-  EXPECT_NE(s.failure.find("2 consecutive self-check failures"), std::string::npos) << s.failure;
-  EXPECT_EQ(s.self_check_failures, 3u);
+}
+
+TEST(RunSummary, LostIntervalsFollowTheFramesStatus) {
+  // Frames every 0.1 s from t0 = 1 s; lost from 0.3 s (declared at 0.5 s,
+  // its first symptom at 0.3 s) until 0.7 s; lost again from 0.9 s to the end.
+  const std::int64_t t0 = 1000000000;
+  RunSummary s;
+  for (int k = 0; k <= 10; ++k) {
+    FrameRecord r = someRecord(t0 + k * 100000000LL);
+    const bool lost = (k >= 5 && k < 7) || k >= 9;
+    r.status = lost ? TrackingStatus::kLost : TrackingStatus::kOk;
+    if (k == 5) r.lost_since_ns = t0 + 300000000, r.lost_reason = "3 consecutive self-check failures";
+    if (k == 9) r.lost_since_ns = t0 + 900000000, r.lost_reason = "non-finite pose";
+    s.count(r, t0);
+  }
+  ASSERT_EQ(s.lost_intervals.size(), 2u);
+  EXPECT_NEAR(s.lost_intervals[0].start_s, 0.3, 1e-12);
+  EXPECT_NEAR(s.lost_intervals[0].end_s, 0.7, 1e-12);
+  EXPECT_EQ(s.lost_intervals[0].reason, "3 consecutive self-check failures");
+  EXPECT_NEAR(s.lost_intervals[1].start_s, 0.9, 1e-12);
+  EXPECT_NEAR(s.lost_intervals[1].end_s, 1.0, 1e-12);
+  s.finish();
+  EXPECT_FALSE(s.failed) << "a loss is an interval, not the run's verdict";
+  std::ostringstream json;
+  writeSummaryJson(json, s);
+  test::expectContainsAll(json.str(), {"\"lost_intervals\": [", "\"reason\": \"non-finite pose\""});
+}
+
+TEST(RunSummary, FailsOnlyWithoutAnEstimate) {
+  RunSummary none;
+  none.finish();
+  EXPECT_TRUE(none.failed);
+  RunSummary all_lost;
+  FrameRecord r = someRecord(1000000000);
+  r.status = TrackingStatus::kLost;
+  r.lost_since_ns = r.t_ns;
+  all_lost.count(r, r.t_ns);
+  all_lost.finish();
+  EXPECT_TRUE(all_lost.failed);
+  EXPECT_EQ(all_lost.failure, "no frame was tracked");
 }
 
 TEST(RunSummary, LatencyPercentilesAreNearestRank) {
@@ -120,7 +154,7 @@ TEST(RunSummary, LatencyPercentilesAreNearestRank) {
   for (int i = 100; i >= 1; --i) {
     FrameRecord r = someRecord(1000000000 + i);
     r.latency_ms = i;
-    s.count(r, 1000000000, 10);
+    s.count(r, 1000000000);
   }
   EXPECT_EQ(s.latencyPercentile(50), 50.0);
   EXPECT_EQ(s.latencyPercentile(99), 99.0);

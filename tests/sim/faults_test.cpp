@@ -11,6 +11,7 @@ namespace {
 
 constexpr std::int64_t kT0 = 1000000000000LL;
 constexpr double kFrame = 0.05;  // 20 Hz
+constexpr std::int64_t kFrameNs = 50000000;
 
 std::int64_t at(double s) { return kT0 + std::llround(s * 1e9); }
 
@@ -43,14 +44,16 @@ TEST(Faults, BadSpecsAreExplained) {
 
 TEST(Faults, ActiveInTheirWindowsOnly) {
   const Fault f = parseFault("black:at=1,for=0.5,every=2");
-  for (const double t : {1.0, 1.2, 1.49, 3.0, 3.49, 7.0}) EXPECT_TRUE(f.active(t, kFrame)) << t;
-  for (const double t : {0.0, 0.99, 1.5, 2.9, 3.5, 4.99}) EXPECT_FALSE(f.active(t, kFrame)) << t;
-  // A window of length 0 is one frame long.
-  const Fault once = parseFault("black:at=1");
-  EXPECT_TRUE(once.active(1.0, kFrame));
-  EXPECT_TRUE(once.active(1.049, kFrame));
-  EXPECT_FALSE(once.active(1.05, kFrame));
-  EXPECT_FALSE(once.active(2.0, kFrame));
+  const auto ns = [](double s) { return std::llround(s * 1e9); };
+  for (const double t : {1.0, 1.2, 1.49, 3.0, 3.49, 7.0}) EXPECT_TRUE(f.active(ns(t), kFrameNs)) << t;
+  for (const double t : {0.0, 0.99, 1.5, 2.9, 3.5, 4.99}) EXPECT_FALSE(f.active(ns(t), kFrameNs)) << t;
+  // A window of length 0 is one frame long, exactly (2.7 and 2.75 are not
+  // one frame apart in doubles).
+  const Fault once = parseFault("black:at=2.7");
+  EXPECT_TRUE(once.active(ns(2.7), kFrameNs));
+  EXPECT_TRUE(once.active(ns(2.749), kFrameNs));
+  EXPECT_FALSE(once.active(ns(2.75), kFrameNs));
+  EXPECT_FALSE(once.active(ns(3.7), kFrameNs));
 }
 
 cv::Mat ramp() {

@@ -199,9 +199,10 @@ std::vector<Job> planJobs(const Matrix& matrix, const std::string& out, const st
 /// A run's cell in a results table: its ATE, or why it has none.
 std::string ateCell(const eval::RunEvaluation* r) {
   if (!r) return "-";
-  if (!r->ok) return r->failure.find("lost track") != std::string::npos ? "**lost**" : "**failed**";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3f", r->result.ate_rmse_m);
+  if (!r->ok) return "**failed**";
+  char b[64];
+  if (r->lost_intervals > 0) std::snprintf(b, sizeof b, "%.3f (lost %.1f s)", r->result.ate_rmse_m, r->lost_s);
+  else std::snprintf(b, sizeof b, "%.3f", r->result.ate_rmse_m);
   return b;
 }
 

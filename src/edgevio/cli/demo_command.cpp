@@ -57,7 +57,7 @@ int demo(const DemoArgs& a, std::ostream& out, std::ostream& err) {
       eval::writeReportCsv(csv, runs);
     }
     out << "\n" << s.frames << " frames, " << s.keyframes << " keyframes, " << s.loop_closures << " loop closures, real-time factor "
-        << s.realtime_factor
+        << s.realtime_factor << (s.lost_intervals.empty() ? std::string() : "; " + s.lossText())
         << (s.failed ? "; RUN FAILED: " + s.failure : std::string()) << "\n"
         << "trajectory: " << (run / "trajectory_tum.txt").string() << "\n"
         << "plot:       " << (run / "eval.svg").string() << "\n"

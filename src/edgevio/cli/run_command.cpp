@@ -26,7 +26,8 @@ int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
         << s.self_check_failures << " self-check failures, " << s.external_check_rejections
         << " external-check rejections, " << (a.realtime ? std::to_string(s.dropped_frames) + " frames dropped (real time), " : std::string())
         << s.loop_closures << " loop closures, " << s.estimator_resets << " estimator resets, " << s.wall_s << " s wall, real-time factor "
-        << s.realtime_factor << (s.failed ? ", FAILED: " + s.failure : std::string()) << "\n"
+        << s.realtime_factor << (s.lost_intervals.empty() ? std::string() : ", " + s.lossText())
+        << (s.failed ? ", FAILED: " + s.failure : std::string()) << "\n"
         << "wrote " << a.out << "/{trajectory_tum.txt, trajectory.csv, frames.csv, summary.json, config.yaml}\n";
     return s.failed ? kExitError : kExitOk;
   } catch (const InputError& e) {

@@ -64,6 +64,11 @@ RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOp
       r.latency_p50_ms = number(latency["p50"], kNaN);
       r.latency_p99_ms = number(latency["p99"], kNaN);
     }
+    if (const YAML::Node lost = summary["lost_intervals"]; lost && lost.IsSequence())
+      for (const YAML::Node& l : lost) {
+        ++r.lost_intervals;
+        r.lost_s += number(l["end_s"], 0.0) - number(l["start_s"], 0.0);
+      }
     if (scalarOr(summary, "failed", "false") == "true") {
       r.failure = "run reported failure (summary.json: failed = true)";
       const std::string why = scalarOr(summary, "failure", "");
@@ -147,7 +152,7 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
       out << " - | " << num(r.realtime_factor, 1) << " | " << num(r.peak_rss_mb, 0) << " |\n";
       continue;
     }
-    out << "ok | " << r.result.matched << " | " << num(r.result.ate_rmse_m, 4) << " | "
+    out << (r.lost_intervals > 0 ? "lost " + num(r.lost_s, 1) + " s" : std::string("ok")) << " | " << r.result.matched << " | " << num(r.result.ate_rmse_m, 4) << " | "
         << num(r.result.are_rot_deg_per_m, 5) << " | " << num(r.result.are_trans_m_per_m, 5) << " |";
     for (const auto& e : r.result.rpe) out << " " << num(e.trans_rmse_m, 4) << " |";
     out << " " << num(r.result.length_m, 1) << " | " << num(r.realtime_factor, 1) << " | " << num(r.peak_rss_mb, 0) << " |\n";
@@ -157,7 +162,7 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
 void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
   out << "sequence,mode,folder,status,failure,matched,align,ate_rmse_m,ate_mean_m,ate_median_m,ate_max_m,"
          "are_rot_deg_per_m,are_trans_m_per_m,rpe_deltas_m,rpe_trans_rmse_m,rpe_rot_rmse_deg,length_m,duration_s,"
-         "realtime_factor,skip,peak_rss_mb,latency_p50_ms,latency_p99_ms\n";
+         "realtime_factor,skip,peak_rss_mb,latency_p50_ms,latency_p99_ms,lost_intervals,lost_s\n";
   for (const auto& r : runs) {
     out << csvField(r.sequence) << "," << csvField(r.mode) << "," << csvField(r.folder) << ","
         << (r.ok ? "ok" : "failed") << "," << csvField(r.failure) << ",";
@@ -180,7 +185,8 @@ void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
     out << (std::isfinite(r.realtime_factor) ? num(r.realtime_factor, 2) : "") << "," << r.skip << ","
         << (std::isfinite(r.peak_rss_mb) ? num(r.peak_rss_mb, 1) : "") << ","
         << (std::isfinite(r.latency_p50_ms) ? num(r.latency_p50_ms, 2) : "") << ","
-        << (std::isfinite(r.latency_p99_ms) ? num(r.latency_p99_ms, 2) : "") << "\n";
+        << (std::isfinite(r.latency_p99_ms) ? num(r.latency_p99_ms, 2) : "") << "," << r.lost_intervals << "," << num(r.lost_s, 3)
+        << "\n";
   }
 }
 

@@ -30,6 +30,8 @@ struct RunEvaluation {
   int skip = 0;                  ///< frames skipped between processed ones (summary.json "skip")
   double peak_rss_mb = 0.0;      ///< the run's peak resident memory (summary.json "peak_rss_mb"), else NaN
   double latency_p50_ms = 0.0, latency_p99_ms = 0.0;  ///< summary.json "latency_ms" p50 and p99, else NaN
+  int lost_intervals = 0;  ///< summary.json "lost_intervals": how many ...
+  double lost_s = 0.0;     ///< ... and their total length [s]
 };
 
 /// Finds and evaluates every run folder under `dir`, sorted by sequence, mode, folder.

@@ -26,6 +26,8 @@ Cell predictionCheck(const R& r) {
 
 constexpr FrameColumn kColumns[] = {
       {"timestamp_ns", "ns", "the frame's time (its left image's)", [](const R& r) { return integer(r.t_ns); }},
+      {"status", "-", "whether the estimate is trusted (see below)",
+       [](const R& r) { return text(options::nameOf(kTrackingStatusChoices, r.status)); }},
       {"keyframe", "-", "1: the frame became a keyframe", [](const R& r) { return integer(r.isKeyframe()); }},
       {"keyframe_reason", "-", "why it became a keyframe (see below), or -",
        [](const R& r) { return text(options::nameOf(tracking::kKeyframeReasonChoices, r.keyframe)); }},

@@ -32,6 +32,12 @@ inline constexpr options::Choice<WindowRestart> kWindowRestartChoices[] = {
     {WindowRestart::kImuGap, "imu_gap", "the IMU is back after a gap the edges bridged: a new window from the previous frame"},
     {WindowRestart::kBlowUp, "blow_up", "the estimate blew up (see events): a new window at this frame"}};
 
+/// Whether a frame's estimate can be trusted (pipeline/loss_monitor.h).
+enum class TrackingStatus { kOk, kLost };
+inline constexpr options::Choice<TrackingStatus> kTrackingStatusChoices[] = {
+    {TrackingStatus::kOk, "ok", "tracking: the estimate is trusted"},
+    {TrackingStatus::kLost, "lost", "inside a lost interval (summary.json lost_intervals): the pose is a guess"}};
+
 struct FrameRecord {
   std::int64_t t_ns = 0;
 
@@ -65,6 +71,9 @@ struct FrameRecord {
   double latency_ms = 0;  ///< from the frame's arrival to its pose (the latency_ms column says what arrival is)
 
   // The result.
+  TrackingStatus status = TrackingStatus::kOk;
+  std::int64_t lost_since_ns = -1;  ///< where a loss this frame declared began (its first symptom); -1: none began here
+  std::string lost_reason;          ///< why, when a loss began here
   geometry::SE3 T_w_b;                ///< the causal pose estimate of the frame
   std::optional<imu::NavState> state;  ///< the newest window state (velocity, biases) in the IMU modes
   std::vector<std::string> events;     ///< for the log and summary.json: restarts, IMU gaps, unreadable images

@@ -19,7 +19,14 @@ SE3 poseOf(const imu::NavState& x) { return SE3(x.R_w_b, x.p_w); }
 Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tracker, const SE3& T_b_c,
                    const imu::ImuNoise& noise, const std::vector<imu::ImuSample>& imu, const imu::StaticInit& init,
                    bool realtime)
-    : mode_(mode), config_(config), tracker_(tracker), imu_(imu), init_(init), T_b_c_(T_b_c), realtime_(realtime) {
+    : mode_(mode),
+      config_(config),
+      tracker_(tracker),
+      imu_(imu),
+      init_(init),
+      T_b_c_(T_b_c),
+      realtime_(realtime),
+      loss_(config.tracking.lost_after_failures) {
   if (mode.imu || mode.loop) estimator_.emplace(config.estimator, noise, T_b_c, mode.imu, init.gyro_bias);
 }
 
@@ -37,6 +44,7 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   // The alignment's T_nr as the body's motion T_bn_br (what ground truth
   // gives directly: T_w_bn⁻¹·T_w_br), so the front end can be judged alone.
   r.link_T_bn_br = T_b_c_ * r.alignment.T_nr * T_b_c_.inverse();
+  loss_.update(&r);
   t_before_last_ = t_prev_;
   T_w_b_before_last_ = T_w_b_last_;
   t_prev_ = r.t_ns;

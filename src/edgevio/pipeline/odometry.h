@@ -32,6 +32,7 @@
 #include "edgevio/imu/gyro_integration.h"
 #include "edgevio/pipeline/frame_record.h"
 #include "edgevio/pipeline/keyframe_store.h"
+#include "edgevio/pipeline/loss_monitor.h"
 #include "edgevio/pipeline/mode.h"
 #include "edgevio/tracking/edge_tracker.h"
 
@@ -101,6 +102,7 @@ class Odometry {
   imu::StaticInit init_;
   geometry::SE3 T_b_c_;
   bool realtime_;
+  LossMonitor loss_;
   std::optional<estimator::VioEstimator> estimator_;  ///< the window's modes
   KeyframeStore keyframes_;
   std::optional<Previous> previous_;

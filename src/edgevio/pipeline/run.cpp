@@ -80,7 +80,7 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
     r.latency_ms = std::chrono::duration<double, std::milli>(posed - item.released).count();
     writer.write(r);
     const std::size_t events_before = s.events.size();
-    s.count(r, t0, config.tracking.lost_after_failures);
+    s.count(r, t0);
     if (observer.event)
       for (std::size_t e = events_before; e < s.events.size(); ++e) observer.event(s.events[e]);
     if (observer.frame) observer.frame(r);
@@ -88,6 +88,7 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
   });
   if (writer.poses() == 0) throw InputError(req.dataset, 0, "no stereo pair could be read");
 
+  s.finish();
   s.dropped_frames = p.dropped;
   s.skipped_unreadable = sequence->unreadableImages();
   s.warnings = sequence->warnings();

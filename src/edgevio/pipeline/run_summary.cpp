@@ -9,7 +9,7 @@
 
 namespace edgevio::pipeline {
 
-void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns, int lost_after) {
+void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns) {
   ++frames;
   keyframes += static_cast<std::size_t>(r.keyframes_made);
   const bool failed_check = r.aligned && !r.selfCheckPassed();
@@ -26,17 +26,52 @@ void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns, int lost_after)
     std::snprintf(at, sizeof at, "t = %.3f s: ", toSeconds(r.t_ns - t0_ns));
     events.push_back(at + event);
   }
-  if (failed_check) ++consecutive_failures;
-  else if (r.aligned) consecutive_failures = 0;
-  if (consecutive_failures >= lost_after && !failed) {
-    failed = true;
-    failure = "lost track: " + std::to_string(lost_after) + " consecutive self-check failures ending at t = " +
-              std::to_string(toSeconds(r.t_ns)) + " s";
+  const double t = toSeconds(r.t_ns - t0_ns);
+  const bool lost = r.status == TrackingStatus::kLost;
+  const auto event = [&](const std::string& what) {
+    char at[64];
+    std::snprintf(at, sizeof at, "t = %.3f s: ", t);
+    events.push_back(at + what);
+  };
+  const auto secondsText = [](double s) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.2f s", s);
+    return std::string(b);
+  };
+  if (lost && r.lost_since_ns >= 0) {
+    lost_intervals.push_back({toSeconds(r.lost_since_ns - t0_ns), t, r.lost_reason, true});
+    event("estimate lost (" + r.lost_reason + ")");
   }
-  if (!r.T_w_b.translation().allFinite() && !failed) {
-    failed = true;
-    failure = "diverged: non-finite pose";
+  if (!lost_intervals.empty() && lost_intervals.back().open) {
+    LostInterval& l = lost_intervals.back();
+    l.end_s = t;
+    l.open = lost;
+    if (!lost) event("tracking again after " + secondsText(l.end_s - l.start_s) + " lost");
   }
+  trusted_frames += !lost;
+}
+
+void RunSummary::finish() {
+  if (frames == 0) {
+    failed = true;
+    failure = "no frame was processed";
+  } else if (trusted_frames == 0) {
+    failed = true;
+    failure = "no frame was tracked";
+  }
+}
+
+double RunSummary::lostSeconds() const {
+  double s = 0.0;
+  for (const LostInterval& l : lost_intervals) s += l.end_s - l.start_s;
+  return s;
+}
+
+std::string RunSummary::lossText() const {
+  if (lost_intervals.empty()) return "";
+  char b[96];
+  std::snprintf(b, sizeof b, "lost %.2f s in %zu interval(s) (summary.json lost_intervals)", lostSeconds(), lost_intervals.size());
+  return b;
 }
 
 double RunSummary::latencyPercentile(double p) const {
@@ -86,8 +121,21 @@ const std::vector<SummaryField>& summaryFields() {
       {"dropped_frames", "real time: frames dropped because the pipeline was behind", member<&S::dropped_frames>},
       {"static_initialization", "true: the IMU was still at the start, and gave gravity and the gyroscope bias",
        member<&S::static_initialization>},
-      {"failed", "true: the run lost track or diverged", member<&S::failed>},
+      {"failed", "true: the run produced no estimate (no frame processed, or none tracked); losses on the way are lost_intervals",
+       member<&S::failed>},
       {"failure", "why", member<&S::failure>},
+      {"lost_intervals",
+       "where the estimate was not trusted (frames.csv status lost), each {start_s, end_s, reason}: seconds after the first "
+       "frame from the loss's first symptom to the first frame tracked again (or the last frame)",
+       [](J& j, const S& s) {
+         j.beginArray();
+         for (const LostInterval& l : s.lost_intervals) {
+           j.beginObject();
+           j.key("start_s").value(l.start_s).key("end_s").value(l.end_s).key("reason").value(l.reason);
+           j.endObject();
+         }
+         j.endArray();
+       }},
       {"duration_s", "the sequence's length [s]", member<&S::duration_s>},
       {"wall_s", "the run's wall time [s]", member<&S::wall_s>},
       {"realtime_factor", "duration_s / wall_s", member<&S::realtime_factor>},

@@ -10,6 +10,13 @@
 
 namespace edgevio::pipeline {
 
+/// A time span where the estimate was not trusted (frames.csv status lost).
+struct LostInterval {
+  double start_s = 0.0, end_s = 0.0;  ///< after the first frame: its first symptom, and the first frame tracked again (or the last frame)
+  std::string reason;
+  bool open = true;  ///< not tracked again yet
+};
+
 struct RunSummary {
   std::string mode, sequence, dataset;
   int skip = 0;
@@ -25,19 +32,25 @@ struct RunSummary {
   std::size_t dropped_frames = 0;          ///< real-time mode: frames dropped because the pipeline was behind
   std::vector<std::string> events;         ///< restarts, IMU gaps, unreadable images: "t = … s: what"
   std::vector<std::string> warnings;       ///< the dataset's
-  bool failed = false;
+  std::vector<LostInterval> lost_intervals;
+  bool failed = false;  ///< no estimate: no frame processed, or none trusted
   std::string failure;
   double wall_s = 0.0, duration_s = 0.0, realtime_factor = 0.0;
   double peak_rss_mb = 0.0;  ///< peak resident memory of the process so far (getrusage)
-  int consecutive_failures = 0;  ///< self-check failures in a row so far
   std::vector<double> latencies_ms;  ///< every frame's latency_ms, in order
+  std::size_t trusted_frames = 0;    ///< frames with status ok
 
+  /// The total length of the lost intervals [s].
+  double lostSeconds() const;
+  /// "lost 1.20 s in 2 interval(s) (…)", or "" when nothing was lost.
+  std::string lossText() const;
   /// Nearest-rank percentile `p` (0 < p <= 100) of the frames' latencies; 0 without frames.
   double latencyPercentile(double p) const;
 
-  /// Counts one frame. `t0_ns`: the sequence's first frame, for event times;
-  /// `lost_after`: consecutive self-check failures that make the run lost.
-  void count(const FrameRecord& r, std::int64_t t0_ns, int lost_after);
+  /// Counts one frame. `t0_ns`: the sequence's first frame, for event and loss times.
+  void count(const FrameRecord& r, std::int64_t t0_ns);
+  /// After the last frame: whether the run produced an estimate at all.
+  void finish();
 };
 
 /// One key of summary.json: its name, meaning, and how to write its value.

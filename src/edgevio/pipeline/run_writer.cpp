@@ -82,6 +82,7 @@ void writeOutputsReference(std::ostream& out) {
       meaning += std::string(" (component \"") + c.component.name + "\" of `edgevio bench`'s time table, per " + c.component.per + ")";
     out << "| `" << c.name << "` | " << c.unit << " | " << cell(meaning) << " |\n";
   }
+  writeChoices(out, "status", kTrackingStatusChoices);
   writeChoices(out, "keyframe_reason", tracking::kKeyframeReasonChoices);
   writeChoices(out, "prediction_check", tracking::kPredictionCheckChoices);
   writeChoices(out, "external_check", kExternalCheckChoices);

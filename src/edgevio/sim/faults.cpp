@@ -36,10 +36,11 @@ std::string fail(const std::string& spec, const std::string& why) {
 
 }  // namespace
 
-bool Fault::active(double t_rel, double min_length_s) const {
-  const double length = std::max(for_s, min_length_s);
-  if (t_rel < at_s) return false;
-  const double since = every_s > 0.0 ? std::fmod(t_rel - at_s, every_s) : t_rel - at_s;
+bool Fault::active(std::int64_t t_rel_ns, std::int64_t min_length_ns) const {
+  const std::int64_t at = toNanoseconds(at_s), every = toNanoseconds(every_s);
+  const std::int64_t length = std::max(toNanoseconds(for_s), min_length_ns);
+  if (t_rel_ns < at) return false;
+  const std::int64_t since = every > 0 ? (t_rel_ns - at) % every : t_rel_ns - at;
   return since < length;
 }
 
@@ -79,11 +80,11 @@ std::string faultSpec(const Fault& f) {
 }
 
 FaultInjector::FaultInjector(std::vector<Fault> faults, std::int64_t t0_ns, double frame_period_s, std::uint64_t seed)
-    : faults_(std::move(faults)), t0_ns_(t0_ns), frame_period_s_(frame_period_s), seed_(seed) {}
+    : faults_(std::move(faults)), t0_ns_(t0_ns), frame_period_ns_(toNanoseconds(frame_period_s)), seed_(seed) {}
 
-bool FaultInjector::any(FaultKind kind, std::int64_t t_ns, double min_length_s, const Fault** which) const {
+bool FaultInjector::any(FaultKind kind, std::int64_t t_ns, std::int64_t min_length_ns, const Fault** which) const {
   for (const Fault& f : faults_)
-    if (f.kind == kind && f.active(toSeconds(t_ns - t0_ns_), min_length_s)) {
+    if (f.kind == kind && f.active(t_ns - t0_ns_, min_length_ns)) {
       if (which) *which = &f;
       return true;
     }
@@ -91,7 +92,7 @@ bool FaultInjector::any(FaultKind kind, std::int64_t t_ns, double min_length_s, 
 }
 
 bool FaultInjector::applyToImage(int cam, std::int64_t t_ns, cv::Mat* image) {
-  const double frame = frame_period_s_;
+  const std::int64_t frame = frame_period_ns_;
   if (any(cam == 0 ? FaultKind::kDropLeft : FaultKind::kDropRight, t_ns, frame)) return false;
   if (any(FaultKind::kFrozen, t_ns, frame)) {
     if (!last_delivered_[cam].empty()) last_delivered_[cam].copyTo(*image);
@@ -109,10 +110,10 @@ bool FaultInjector::applyToImage(int cam, std::int64_t t_ns, cv::Mat* image) {
 std::int64_t FaultInjector::recordedStamp(std::size_t k, std::int64_t t_ns) {
   std::int64_t stamp = t_ns;
   const Fault* f = nullptr;
-  if (any(FaultKind::kStampJitter, t_ns, frame_period_s_, &f))
+  if (any(FaultKind::kStampJitter, t_ns, frame_period_ns_, &f))
     stamp += std::llround(f->magnitude() * 1e6 * Rng(hashCombine(seed_, 0x5a17 + k)).gaussian());
-  if (any(FaultKind::kStampJump, t_ns, frame_period_s_, &f)) stamp += std::llround(f->magnitude() * 1e6);
-  if (any(FaultKind::kStampDuplicate, t_ns, frame_period_s_) && last_stamp_ >= 0) stamp = last_stamp_;
+  if (any(FaultKind::kStampJump, t_ns, frame_period_ns_, &f)) stamp += std::llround(f->magnitude() * 1e6);
+  if (any(FaultKind::kStampDuplicate, t_ns, frame_period_ns_) && last_stamp_ >= 0) stamp = last_stamp_;
   last_stamp_ = stamp;
   return stamp;
 }
@@ -123,7 +124,7 @@ std::vector<imu::ImuSample> FaultInjector::recordedImu(const std::vector<imu::Im
   for (std::size_t i = 0; i < truth.size(); ++i) {
     imu::ImuSample s = truth[i];
     // One reading's share of time: a window shorter than that still hits one.
-    const double reading = i + 1 < truth.size() ? toSeconds(truth[i + 1].t_ns - s.t_ns) : 0.0;
+    const std::int64_t reading = i + 1 < truth.size() ? truth[i + 1].t_ns - s.t_ns : 0;
     if (any(FaultKind::kImuDropout, s.t_ns, reading)) continue;
     const Fault* f = nullptr;
     if (any(FaultKind::kImuSpike, s.t_ns, reading, &f)) {

@@ -50,9 +50,10 @@ struct Fault {
   double every_s = 0.0;  ///< period of the windows [s]; 0: one window
   double size = 0.0;     ///< the kind's magnitude (see kFaultKindChoices); 0: its default
 
-  /// Whether t_rel (seconds after the first frame) lies in a window; a window
-  /// shorter than `min_length_s` is widened to it.
-  bool active(double t_rel, double min_length_s) const;
+  /// Whether t_rel_ns (after the first frame) lies in a window; a window
+  /// shorter than `min_length_ns` is widened to it. In whole nanoseconds, so
+  /// that a one-frame window holds exactly one frame.
+  bool active(std::int64_t t_rel_ns, std::int64_t min_length_ns) const;
   /// size, or the kind's default where size is 0.
   double magnitude() const;
 };
@@ -77,11 +78,11 @@ class FaultInjector {
   std::vector<imu::ImuSample> recordedImu(const std::vector<imu::ImuSample>& truth) const;
 
  private:
-  bool any(FaultKind kind, std::int64_t t_ns, double min_length_s, const Fault** which = nullptr) const;
+  bool any(FaultKind kind, std::int64_t t_ns, std::int64_t min_length_ns, const Fault** which = nullptr) const;
 
   std::vector<Fault> faults_;
   std::int64_t t0_ns_;
-  double frame_period_s_;
+  std::int64_t frame_period_ns_;
   std::uint64_t seed_;
   cv::Mat last_delivered_[2];  ///< each camera's last image written (kept only for frozen faults)
   std::int64_t last_stamp_ = -1;
