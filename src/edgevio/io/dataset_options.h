@@ -5,7 +5,7 @@ namespace edgevio::io {
 
 /// Reading a dataset (config section `dataset`).
 struct DatasetOptions {
-  double stereo_sync_tolerance_s, imu_gap_warning_s;
+  double stereo_sync_tolerance_s, imu_gap_warning_s, imu_glitch_gyro_rad_s, imu_glitch_accel_mps2;
 
   EDGEVIO_OPTIONS(DatasetOptions)
 };
@@ -14,6 +14,12 @@ EDGEVIO_OPTIONS_TABLE(DatasetOptions,
     number("stereo_sync_tolerance_s", &S::stereo_sync_tolerance_s, 0.003, "s",
            "largest |t_cam0 - t_cam1| for two images to form a stereo pair", halfOpen(0, 0.5)),
     number("imu_gap_warning_s", &S::imu_gap_warning_s, 0.025, "s", "an IMU gap longer than this is reported as a warning",
-           above(0)))
+           above(0)),
+    number("imu_glitch_gyro_rad_s", &S::imu_glitch_gyro_rad_s, 2.5, "rad/s",
+           "a gyroscope reading this far (any axis) from the median of the five around it is a glitch, replaced by that median "
+           "(real EuRoC logs: at most 1.2)",
+           above(0).orOff()),
+    number("imu_glitch_accel_mps2", &S::imu_glitch_accel_mps2, 40.0, "m/s^2",
+           "... or an accelerometer reading this far (real EuRoC logs, landings included: at most 18)", above(0).orOff()))
 
 }  // namespace edgevio::io

@@ -9,6 +9,7 @@
 #include "edgevio/common/error.h"
 #include "edgevio/common/table_reader.h"
 #include "edgevio/common/time.h"
+#include "edgevio/imu/imu_glitches.h"
 #include "edgevio/io/calibration_io.h"
 #include "edgevio/io/imu_io.h"
 #include "edgevio/io/png_reader.h"
@@ -82,7 +83,9 @@ void EurocDataset::pairFrames(const std::vector<ImageRecord>& left, const std::v
 }
 
 void EurocDataset::readImu() {
-  imu_ = readImuCsv((fs::path(mav0_) / "imu0" / "data.csv").string(), options_.imu_gap_warning_s, &warnings_);
+  const std::string path = (fs::path(mav0_) / "imu0" / "data.csv").string();
+  imu_ = readImuCsv(path, options_.imu_gap_warning_s, &warnings_);
+  replaceImuGlitches(&imu_, options_, path, &warnings_);
 }
 
 double EurocDataset::imuRateHz() const {
@@ -135,6 +138,16 @@ std::function<cv::Mat()> EurocDataset::rightImageLoader(std::size_t i) const {
     cv::Mat raw = decodeGrayImage(path);
     return raw.cols == width && raw.rows == height ? raw : cv::Mat();
   };
+}
+
+void replaceImuGlitches(std::vector<imu::ImuSample>* imu, const DatasetOptions& options, const std::string& where,
+                        std::vector<std::string>* warnings) {
+  const std::vector<std::size_t> replaced = imu::replaceGlitches(imu, options.imu_glitch_gyro_rad_s, options.imu_glitch_accel_mps2);
+  if (replaced.empty()) return;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, ": %zu IMU reading(s) replaced as glitches, the first at t = %.3f s (dataset.imu_glitch_*)",
+                replaced.size(), toSeconds((*imu)[replaced.front()].t_ns));
+  warnings->push_back(where + buf);
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> pairStereo(const std::vector<std::int64_t>& left,

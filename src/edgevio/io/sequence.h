@@ -73,6 +73,11 @@ struct SequenceSource {
 /// Opens a sequence. Throws InputError naming what is wrong and what to pass.
 std::unique_ptr<Sequence> openSequence(const SequenceSource& source, const DatasetOptions& options);
 
+/// Replaces the IMU glitches of a sequence's log (imu/imu_glitches.h, the
+/// thresholds of `options`) and says so in one warning naming `where`.
+void replaceImuGlitches(std::vector<imu::ImuSample>* imu, const DatasetOptions& options, const std::string& where,
+                        std::vector<std::string>* warnings);
+
 /// Pairs left and right image times (both increasing) that lie within
 /// `tolerance_ns` of each other, in order: (left index, right index) per
 /// pair. Adds the frames of each camera left without a partner to `unpaired`.

@@ -121,10 +121,11 @@ std::int64_t FaultInjector::recordedStamp(std::size_t k, std::int64_t t_ns) {
 std::vector<imu::ImuSample> FaultInjector::recordedImu(const std::vector<imu::ImuSample>& truth) const {
   std::vector<imu::ImuSample> out;
   out.reserve(truth.size());
+  // The IMU period: a window shorter than that still hits one reading.
+  const std::int64_t reading =
+      truth.size() < 2 ? 0 : (truth.back().t_ns - truth.front().t_ns) / static_cast<std::int64_t>(truth.size() - 1);
   for (std::size_t i = 0; i < truth.size(); ++i) {
     imu::ImuSample s = truth[i];
-    // One reading's share of time: a window shorter than that still hits one.
-    const std::int64_t reading = i + 1 < truth.size() ? truth[i + 1].t_ns - s.t_ns : 0;
     if (any(FaultKind::kImuDropout, s.t_ns, reading)) continue;
     const Fault* f = nullptr;
     if (any(FaultKind::kImuSpike, s.t_ns, reading, &f)) {
