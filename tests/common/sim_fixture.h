@@ -58,4 +58,20 @@ struct FigureEightWorld {
   }
 };
 
+/// The run tests' render: 4 s of the figure8 scenario, seed 9, textures of
+/// 512 px, with `faults`, written to out_dir; returns out_dir.
+inline std::string renderFigure8(const std::string& out_dir, const std::vector<sim::Fault>& faults = {}) {
+  sim::SimRequest r;
+  r.out_dir = out_dir;
+  r.scenario = "figure8";
+  r.start_s = 0.0;
+  r.duration_s = 4.0;
+  r.seed = 9;
+  r.faults = faults;
+  sim::SimOptions o;
+  o.scene.texture_log2_size = 9;
+  sim::simulate(r, o);
+  return out_dir;
+}
+
 }  // namespace edgevio::test

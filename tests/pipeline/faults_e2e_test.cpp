@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "common/sim_fixture.h"
 #include "common/test_support.h"
 #include "edgevio/common/table_reader.h"
 #include "edgevio/io/euroc_dataset.h"
@@ -20,26 +21,21 @@ using test::TempDir;
 
 const Mode kEdgeOnly{false, false}, kEdgeLoop{false, true}, kEdgeImu{true, false}, kFull{true, true};
 
+/// The run tests' render with every fault, disjoint in time so that each
+/// one's effect can be told apart. The blackout lasts 12 frames, beyond
+/// tracking.lost_after_failures (10).
+std::vector<sim::Fault> allFaults() {
+  std::vector<sim::Fault> faults;
+  for (const char* spec : {"black:at=0.6,for=0.6", "frozen:at=1.5,for=0.3", "saturated:at=0.3,every=1.7", "occluded:at=2.0,for=0.4",
+                           "drop_left:at=2.5", "drop_right:at=2.7", "imu_dropout:at=2.9,for=0.3", "imu_spike:at=1.35",
+                           "stamp_duplicate:at=3.5", "stamp_jump:at=3.7,size=60", "stamp_jitter:at=3.8,for=0.2,size=1"})
+    faults.push_back(sim::parseFault(spec));
+  return faults;
+}
+
 struct FaultyRender {
   TempDir dir;
-  std::string dataset;
-  FaultyRender() {
-    sim::SimRequest r;
-    r.out_dir = dir.file("data");
-    r.scenario = "figure8";
-    r.duration_s = 4.0;
-    r.seed = 9;
-    // Disjoint in time, so each one's effect can be told apart. The blackout
-    // lasts 12 frames, beyond tracking.lost_after_failures (10).
-    for (const char* spec : {"black:at=0.6,for=0.6", "frozen:at=1.5,for=0.3", "saturated:at=0.3,every=1.7", "occluded:at=2.0,for=0.4",
-                             "drop_left:at=2.5", "drop_right:at=2.7", "imu_dropout:at=2.9,for=0.3", "imu_spike:at=1.35",
-                             "stamp_duplicate:at=3.5", "stamp_jump:at=3.7,size=60", "stamp_jitter:at=3.8,for=0.2,size=1"})
-      r.faults.push_back(sim::parseFault(spec));
-    sim::SimOptions o;
-    o.scene.texture_log2_size = 9;
-    sim::simulate(r, o);
-    dataset = r.out_dir;
-  }
+  std::string dataset = test::renderFigure8(dir.file("data"), allFaults());
 };
 
 const FaultyRender& faultyRender() {

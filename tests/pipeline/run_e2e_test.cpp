@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/mini_dataset.h"
+#include "common/sim_fixture.h"
 #include "common/test_support.h"
 #include "edgevio/common/error.h"
 #include "edgevio/common/table_reader.h"
@@ -101,19 +102,7 @@ TEST(Run, RealStaticFolderEdgeImuFindsGravityAndGyroBias) {
 
 struct Simulated {
   TempDir dir;
-  std::string dataset;
-  Simulated() {
-    sim::SimRequest r;
-    r.out_dir = dir.file("data");
-    r.scenario = "figure8";
-    r.start_s = 0.0;
-    r.duration_s = 4.0;
-    r.seed = 9;
-    sim::SimOptions o;
-    o.scene.texture_log2_size = 9;
-    sim::simulate(r, o);
-    dataset = r.out_dir;
-  }
+  std::string dataset = test::renderFigure8(dir.file("data"));
 };
 
 const Simulated& simulated() {
