@@ -1,5 +1,6 @@
 #pragma once
 // Simulator inputs shared by the simulator's unit and end-to-end tests.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,16 +19,20 @@ inline sim::SimOptions fastSimOptions() {
   return o;
 }
 
-/// 0.6 s of the figure8 scenario from 1.5 s, seed 3.
-inline sim::SimRequest shortScenario(const std::string& out) {
+/// A built-in scenario's span [start_s, start_s + duration_s], written to out.
+inline sim::SimRequest scenarioRequest(const std::string& out, const std::string& scenario, double start_s, double duration_s,
+                                       std::uint64_t seed) {
   sim::SimRequest r;
   r.out_dir = out;
-  r.scenario = "figure8";
-  r.start_s = 1.5;
-  r.duration_s = 0.6;
-  r.seed = 3;
+  r.scenario = scenario;
+  r.start_s = start_s;
+  r.duration_s = duration_s;
+  r.seed = seed;
   return r;
 }
+
+/// 0.6 s of the figure8 scenario from 1.5 s, seed 3.
+inline sim::SimRequest shortScenario(const std::string& out) { return scenarioRequest(out, "figure8", 1.5, 0.6, 3); }
 
 /// A span of a real EuRoC recording: its ground truth, its IMU log replayed.
 inline sim::SimRequest replayRequest(const std::string& euroc_dir, const std::string& out, double start_s, double duration_s) {
@@ -61,12 +66,7 @@ struct FigureEightWorld {
 /// The run tests' render: 4 s of the figure8 scenario, seed 9, textures of
 /// 512 px, with `faults`, written to out_dir; returns out_dir.
 inline std::string renderFigure8(const std::string& out_dir, const std::vector<sim::Fault>& faults = {}) {
-  sim::SimRequest r;
-  r.out_dir = out_dir;
-  r.scenario = "figure8";
-  r.start_s = 0.0;
-  r.duration_s = 4.0;
-  r.seed = 9;
+  sim::SimRequest r = scenarioRequest(out_dir, "figure8", 0.0, 4.0, 9);
   r.faults = faults;
   sim::SimOptions o;
   o.scene.texture_log2_size = 9;
