@@ -85,13 +85,37 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
   ASSERT_EQ(cli::evalResults(dir.path(), EvalOptions{}, out, err), cli::kExitOk) << err.str();
   const std::string md = test::readFile(dir.file("report.md")), csv = test::readFile(dir.file("report.csv"));
   EXPECT_NE(md.find("4 runs, 3 failed"), std::string::npos) << md;
-  EXPECT_NE(md.find("| seqA | edge+imu | lost 1.5 s |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| seqA | edge+imu | lost 1.5 s; 3 segments, ATE <= "), std::string::npos) << md;
   EXPECT_NE(md.find("| seqA | edge-only | **FAILED**"), std::string::npos) << md;
   EXPECT_NE(md.find("no ground truth"), std::string::npos) << md;
   EXPECT_NE(md.find("no timestamp overlap"), std::string::npos) << md;
   EXPECT_NE(csv.find("seqA,edge+imu,seqA/edge+imu,ok,,400,se3,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",7.50,0,,12.50,40.25,2,1.500\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",0,,,,0,0.000\n"), std::string::npos) << csv;  // a summary without them: empty fields, nothing lost
+  EXPECT_NE(csv.find(",7.50,0,,12.50,40.25,2,1.500,3,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",0,,,,0,0.000,0,\n"), std::string::npos) << csv;  // a summary without them: empty fields, nothing lost
+}
+
+TEST(Report, SegmentsBetweenLossesAreEvaluatedAlone) {
+  // The estimate jumps 1 m during its one loss (10-11 s after its first
+  // pose): the whole run's ATE carries the jump, each segment is exact.
+  io::Trajectory est = circle(0);
+  for (auto& s : est)
+    if (s.t_ns - est.front().t_ns > 10500000000LL) s.T_w_b = SE3(s.T_w_b.so3(), s.T_w_b.translation() + Vec3(1, 0, 0));
+  const std::vector<io::Trajectory> segments = segmentsBetweenLosses(est, {{10.0, 11.0}});
+  ASSERT_EQ(segments.size(), 2u);
+  EXPECT_EQ(segments[0].size(), 200u);  // 0-9.95 s
+  EXPECT_EQ(segments[1].size(), 179u);  // 11.05-19.95 s
+  EXPECT_TRUE(segmentsBetweenLosses(est, {{0.0, 19.0}}).empty()) << "a piece under kMinSegmentPoses is left out";
+  TempDir dir;
+  std::filesystem::create_directories(dir.file("run"));
+  io::writeTrajectoryEuroc(dir.file("run/groundtruth.csv"), circle(0));
+  io::writeTrajectoryTum(dir.file("run/trajectory_tum.txt"), est);
+  dir.write("run/summary.json", "{\"lost_intervals\": [{\"start_s\": 10, \"end_s\": 11, \"reason\": \"x\"}]}");
+  const auto runs = evaluateRunFolders(dir.path(), EvalOptions{});
+  ASSERT_EQ(runs.size(), 1u);
+  ASSERT_TRUE(runs[0].ok) << runs[0].failure;
+  EXPECT_GT(runs[0].result.ate_rmse_m, 0.3);
+  ASSERT_EQ(runs[0].segment_ate_m.size(), 2u);
+  for (double ate : runs[0].segment_ate_m) EXPECT_LT(ate, 1e-6);
 }
 
 TEST(EvalCommand, SegmentsAndErrors) {

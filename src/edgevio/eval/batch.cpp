@@ -9,6 +9,7 @@
 #include <set>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/time.h"
 #include "edgevio/common/yaml_file.h"
 
 namespace edgevio::eval {
@@ -64,10 +65,12 @@ RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOp
       r.latency_p50_ms = number(latency["p50"], kNaN);
       r.latency_p99_ms = number(latency["p99"], kNaN);
     }
+    std::vector<std::pair<double, double>> lost_spans;
     if (const YAML::Node lost = summary["lost_intervals"]; lost && lost.IsSequence())
       for (const YAML::Node& l : lost) {
+        lost_spans.emplace_back(number(l["start_s"], 0.0), number(l["end_s"], 0.0));
         ++r.lost_intervals;
-        r.lost_s += number(l["end_s"], 0.0) - number(l["start_s"], 0.0);
+        r.lost_s += lost_spans.back().second - lost_spans.back().first;
       }
     if (scalarOr(summary, "failed", "false") == "true") {
       r.failure = "run reported failure (summary.json: failed = true)";
@@ -85,7 +88,16 @@ RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOp
       r.failure = "no ground truth found (summary.json groundtruth/dataset, or groundtruth.csv in the folder)";
       return r;
     }
-    r.result = evaluate(io::readTrajectory(gt), io::readTrajectory(est.string()), options);
+    const io::Trajectory truth = io::readTrajectory(gt), estimate = io::readTrajectory(est.string());
+    r.result = evaluate(truth, estimate, options);
+    if (!lost_spans.empty())
+      for (const io::Trajectory& segment : segmentsBetweenLosses(estimate, lost_spans)) {
+        try {
+          r.segment_ate_m.push_back(evaluate(truth, segment, options).ate_rmse_m);
+        } catch (const InputError&) {
+          // A segment the ground truth does not cover has no ATE; the whole run's is reported above.
+        }
+      }
     r.ok = true;
   } catch (const InputError& e) {
     r.failure = e.what();
@@ -109,6 +121,24 @@ std::string csvField(const std::string& s) {
 
 }  // namespace
 
+std::vector<io::Trajectory> segmentsBetweenLosses(const io::Trajectory& est, const std::vector<std::pair<double, double>>& lost) {
+  std::vector<io::Trajectory> segments(1);
+  std::size_t next = 0;  // the first lost interval not yet passed
+  for (const io::TrajectorySample& s : est) {
+    const double t = toSeconds(s.t_ns - est.front().t_ns);
+    while (next < lost.size() && t > lost[next].second) {
+      ++next;
+      segments.emplace_back();
+    }
+    if (next < lost.size() && t >= lost[next].first) continue;  // inside a loss
+    segments.back().push_back(s);
+  }
+  std::vector<io::Trajectory> kept;
+  for (io::Trajectory& seg : segments)
+    if (seg.size() >= kMinSegmentPoses) kept.push_back(std::move(seg));
+  return kept;
+}
+
 std::vector<RunEvaluation> evaluateRunFolders(const std::string& dir, const EvalOptions& options) {
   if (!fs::is_directory(dir)) throw InputError(dir, 0, "results folder not found");
   std::set<fs::path> runs;
@@ -125,6 +155,18 @@ std::vector<RunEvaluation> evaluateRunFolders(const std::string& dir, const Eval
   });
   return out;
 }
+
+namespace {
+/// "ok", or "lost 1.5 s; 3 segments, ATE <= 0.012 m" for a run with losses.
+std::string statusText(const RunEvaluation& r) {
+  if (r.lost_intervals == 0) return "ok";
+  std::string s = "lost " + num(r.lost_s, 1) + " s";
+  if (!r.segment_ate_m.empty())
+    s += "; " + std::to_string(r.segment_ate_m.size()) + (r.segment_ate_m.size() == 1 ? " segment" : " segments") + ", ATE <= " +
+         num(*std::max_element(r.segment_ate_m.begin(), r.segment_ate_m.end()), 3) + " m";
+  return s;
+}
+}  // namespace
 
 void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& runs, const EvalOptions& options) {
   std::size_t failures = 0;
@@ -152,7 +194,7 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
       out << " - | " << num(r.realtime_factor, 1) << " | " << num(r.peak_rss_mb, 0) << " |\n";
       continue;
     }
-    out << (r.lost_intervals > 0 ? "lost " + num(r.lost_s, 1) + " s" : std::string("ok")) << " | " << r.result.matched << " | " << num(r.result.ate_rmse_m, 4) << " | "
+    out << statusText(r) << " | " << r.result.matched << " | " << num(r.result.ate_rmse_m, 4) << " | "
         << num(r.result.are_rot_deg_per_m, 5) << " | " << num(r.result.are_trans_m_per_m, 5) << " |";
     for (const auto& e : r.result.rpe) out << " " << num(e.trans_rmse_m, 4) << " |";
     out << " " << num(r.result.length_m, 1) << " | " << num(r.realtime_factor, 1) << " | " << num(r.peak_rss_mb, 0) << " |\n";
@@ -162,7 +204,7 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
 void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
   out << "sequence,mode,folder,status,failure,matched,align,ate_rmse_m,ate_mean_m,ate_median_m,ate_max_m,"
          "are_rot_deg_per_m,are_trans_m_per_m,rpe_deltas_m,rpe_trans_rmse_m,rpe_rot_rmse_deg,length_m,duration_s,"
-         "realtime_factor,skip,peak_rss_mb,latency_p50_ms,latency_p99_ms,lost_intervals,lost_s\n";
+         "realtime_factor,skip,peak_rss_mb,latency_p50_ms,latency_p99_ms,lost_intervals,lost_s,segments,segment_ate_max_m\n";
   for (const auto& r : runs) {
     out << csvField(r.sequence) << "," << csvField(r.mode) << "," << csvField(r.folder) << ","
         << (r.ok ? "ok" : "failed") << "," << csvField(r.failure) << ",";
@@ -186,7 +228,8 @@ void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
         << (std::isfinite(r.peak_rss_mb) ? num(r.peak_rss_mb, 1) : "") << ","
         << (std::isfinite(r.latency_p50_ms) ? num(r.latency_p50_ms, 2) : "") << ","
         << (std::isfinite(r.latency_p99_ms) ? num(r.latency_p99_ms, 2) : "") << "," << r.lost_intervals << "," << num(r.lost_s, 3)
-        << "\n";
+        << "," << r.segment_ate_m.size() << ","
+        << (r.segment_ate_m.empty() ? "" : num(*std::max_element(r.segment_ate_m.begin(), r.segment_ate_m.end()), 6)) << "\n";
   }
 }
 

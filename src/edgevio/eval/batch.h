@@ -13,6 +13,7 @@
 // failure row with the reason: never dropped.
 #include <iosfwd>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "edgevio/eval/metrics.h"
@@ -32,7 +33,19 @@ struct RunEvaluation {
   double latency_p50_ms = 0.0, latency_p99_ms = 0.0;  ///< summary.json "latency_ms" p50 and p99, else NaN
   int lost_intervals = 0;  ///< summary.json "lost_intervals": how many ...
   double lost_s = 0.0;     ///< ... and their total length [s]
+  /// With lost intervals: the ATE RMSE of each segment between them, each
+  /// aligned alone (segments shorter than kMinSegmentPoses are left out).
+  std::vector<double> segment_ate_m;
 };
+
+/// A segment between losses needs this many poses to be evaluated: an
+/// alignment of fewer fits much of their error away (one second at 20 Hz).
+inline constexpr std::size_t kMinSegmentPoses = 20;
+
+/// The estimate's pieces outside the lost intervals, given as (start_s,
+/// end_s) after its first pose, in time order; pieces shorter than
+/// kMinSegmentPoses are dropped.
+std::vector<io::Trajectory> segmentsBetweenLosses(const io::Trajectory& est, const std::vector<std::pair<double, double>>& lost);
 
 /// Finds and evaluates every run folder under `dir`, sorted by sequence, mode, folder.
 std::vector<RunEvaluation> evaluateRunFolders(const std::string& dir, const EvalOptions& options);
