@@ -9,6 +9,7 @@
 //     - {name: v102, trajectory: path/gt.csv, imu: path/imu0.csv, seeds: [1, 2, 3]}  # one render per seed
 //     - {name: v202, trajectory: path/gt.csv, imu: path/imu0.csv, start: 0, duration: 30}
 //     - {name: mine, dataset: path/to/asl/folder}                               # an existing folder
+//     - {name: dark, scenario: figure8, duration: 20, seed: 1, faults: ["black:at=5,for=0.5"]}  # simulate --fault
 //
 // Every run is one self-contained shell command (render the sequence under a
 // lock if it is missing, then `edgevio run`), so `--emit-jobs` can hand the
@@ -37,6 +38,7 @@
 #include "edgevio/pipeline/component_times.h"
 #include "edgevio/pipeline/frame_record.h"
 #include "edgevio/pipeline/mode.h"
+#include "edgevio/sim/faults.h"
 
 namespace edgevio::cli {
 
@@ -93,6 +95,18 @@ std::string renderCommand(const YAML::Node& s, const std::string& matrix_path, c
       sim += std::string(" --") + (std::string(key) == "blur_ms" ? "blur-ms" : key) + " " + value;
     }
   if (!seed.empty()) sim += " --seed " + seed;
+  if (const YAML::Node faults = s["faults"]) {
+    if (!faults.IsSequence()) throw InputError(matrix_path, yamlLine(faults), "faults: a list of simulate --fault specs");
+    for (const auto& f : faults) {
+      const std::string spec = f.as<std::string>();
+      try {
+        sim::parseFault(spec);
+      } catch (const InputError& e) {
+        throw InputError(matrix_path, yamlLine(f), e.what());
+      }
+      sim += " --fault " + quote(spec);
+    }
+  }
   // Rendered once, under a lock, whichever job needs it first.
   const std::string done = dataset + "/.complete";
   return "mkdir -p " + quote(fs::path(dataset).parent_path().string()) + " && flock " + quote(dataset + ".lock") + " sh -c " +
