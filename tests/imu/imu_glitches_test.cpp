@@ -16,7 +16,7 @@ namespace {
 std::vector<ImuSample> motion() {
   std::vector<ImuSample> v;
   for (int i = 0; i < 200; ++i) {
-    const double t = 0.005 * i, w = 2 * 3.14159265358979 * 3;
+    const double t = 0.005 * i, w = 2 * kPi * 3;
     v.push_back({i * 5000000LL, Vec3(8 * std::sin(w * t), 0.1, 0), Vec3(30 * std::cos(w * t), 0, 9.81)});
   }
   return v;
@@ -32,7 +32,7 @@ TEST(ImuGlitches, ASpikedReadingIsReplacedByItsNeighboursMedian) {
   // The median of five samples of a smooth motion is within the motion's
   // change over two readings: 8 rad/s x 2pi x 3 Hz x 10 ms = 1.5 rad/s at most.
   EXPECT_LT((imu[57].gyro - truth[57].gyro).norm(), 1.6);
-  EXPECT_LT((imu[120].accel - truth[120].accel).norm(), 30 * 2 * 3.14159265358979 * 3 * 0.01);
+  EXPECT_LT((imu[120].accel - truth[120].accel).norm(), 30 * 2 * kPi * 3 * 0.01);
   for (std::size_t i = 0; i < imu.size(); ++i) {
     if (i != 57 && i != 120) {
       EXPECT_EQ(imu[i].gyro, truth[i].gyro) << i;

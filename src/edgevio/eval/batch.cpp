@@ -157,13 +157,18 @@ std::vector<RunEvaluation> evaluateRunFolders(const std::string& dir, const Eval
 }
 
 namespace {
+/// The largest ATE of a run's segments between losses (NaN without any).
+double worstSegmentAte(const RunEvaluation& r) {
+  return r.segment_ate_m.empty() ? kNaN : *std::max_element(r.segment_ate_m.begin(), r.segment_ate_m.end());
+}
+
 /// "ok", or "lost 1.5 s; 3 segments, ATE <= 0.012 m" for a run with losses.
 std::string statusText(const RunEvaluation& r) {
   if (r.lost_intervals == 0) return "ok";
   std::string s = "lost " + num(r.lost_s, 1) + " s";
   if (!r.segment_ate_m.empty())
     s += "; " + std::to_string(r.segment_ate_m.size()) + (r.segment_ate_m.size() == 1 ? " segment" : " segments") + ", ATE <= " +
-         num(*std::max_element(r.segment_ate_m.begin(), r.segment_ate_m.end()), 3) + " m";
+         num(worstSegmentAte(r), 3) + " m";
   return s;
 }
 }  // namespace
@@ -229,7 +234,7 @@ void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
         << (std::isfinite(r.latency_p50_ms) ? num(r.latency_p50_ms, 2) : "") << ","
         << (std::isfinite(r.latency_p99_ms) ? num(r.latency_p99_ms, 2) : "") << "," << r.lost_intervals << "," << num(r.lost_s, 3)
         << "," << r.segment_ate_m.size() << ","
-        << (r.segment_ate_m.empty() ? "" : num(*std::max_element(r.segment_ate_m.begin(), r.segment_ate_m.end()), 6)) << "\n";
+        << (r.segment_ate_m.empty() ? "" : num(worstSegmentAte(r), 6)) << "\n";
   }
 }
 

@@ -21,18 +21,14 @@ void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns) {
   loop_closures += static_cast<std::size_t>(r.loop_links);
   back_links += static_cast<std::size_t>(r.back_links);
   latencies_ms.push_back(r.latency_ms);
-  for (const std::string& event : r.events) {
-    char at[64];
-    std::snprintf(at, sizeof at, "t = %.3f s: ", toSeconds(r.t_ns - t0_ns));
-    events.push_back(at + event);
-  }
   const double t = toSeconds(r.t_ns - t0_ns);
-  const bool lost = r.status == TrackingStatus::kLost;
   const auto event = [&](const std::string& what) {
     char at[64];
     std::snprintf(at, sizeof at, "t = %.3f s: ", t);
     events.push_back(at + what);
   };
+  for (const std::string& e : r.events) event(e);
+  const bool lost = r.status == TrackingStatus::kLost;
   const auto secondsText = [](double s) {
     char b[32];
     std::snprintf(b, sizeof b, "%.2f s", s);

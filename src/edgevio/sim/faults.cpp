@@ -6,13 +6,13 @@
 
 #include "edgevio/common/error.h"
 #include "edgevio/common/time.h"
+#include "edgevio/sim/imu_synth.h"
 #include "edgevio/sim/random.h"
 
 namespace edgevio::sim {
 
 namespace {
 
-constexpr double kGravity = 9.81;
 /// What a saturated-frame fault leaves of the scene: a frame exposed this
 /// many times too long (a sudden light, the sun) clips most of it at 255.
 constexpr double kDefaultOverexposure = 4.0;
