@@ -182,6 +182,41 @@ TEST(Run, ShortRenderedSequenceIsAccurateAndDeterministic) {
   EXPECT_TRUE(std::filesystem::exists(a.file("config.yaml")));
 }
 
+TEST(Run, AlignmentPicturesAreKeptForEventfulFramesAndEveryTenthAndChangeNothing) {
+  // run_writer.h's policy: every keyframe, failed, rejected or restarting
+  // frame and every 10th frame (from the first) keeps alignment/<t_ns>.jpg,
+  // and no other frame does; drawing them does not touch the estimate.
+  TempDir with, without;
+  RunRequest r = request(simulated().dataset, with.path(), kEdgeImu);
+  run(r, Config{});
+  r.out_dir = without.path();
+  r.picture_stride = 0;
+  run(r, Config{});
+  EXPECT_EQ(test::readFile(with.file("trajectory.csv")), test::readFile(without.file("trajectory.csv")));
+  EXPECT_FALSE(std::filesystem::exists(without.file("alignment")));
+  TableReader in(with.file("frames.csv"), TableReader::Separator::kComma, TableReader::Header::kColumnNames);
+  std::size_t index = 0, expected = 0, keyframes = 0;
+  while (in.next()) {
+    const bool keyframe = in.field(in.column("keyframe")) == "1";
+    const bool eventful = keyframe || (in.field(in.column("aligned")) == "1" && in.field(in.column("self_check")) == "0") ||
+                          in.field(in.column("external_check")) == "rejected" || in.field(in.column("restart")) != "-";
+    const bool kept = eventful || index % 10 == 0;
+    const std::string picture = with.file("alignment/" + in.field(in.column("timestamp_ns")) + ".jpg");
+    EXPECT_EQ(std::filesystem::exists(picture), kept) << picture;
+    if (kept) {
+      EXPECT_GT(std::filesystem::file_size(picture), 10000u) << picture;  // a 752x480 picture, not an empty file
+    }
+    expected += kept;
+    keyframes += keyframe;
+    ++index;
+  }
+  EXPECT_GE(keyframes, 3u);
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(with.file("alignment"))) ++files;
+  EXPECT_EQ(files, expected);
+  std::printf("%zu frames, %zu keyframes, %zu alignment pictures\n", index, keyframes, files);
+}
+
 TEST(Run, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
   TempDir a;
   const auto [s, r] = runTwice(kEdgeImu, a);

@@ -200,8 +200,10 @@ std::vector<Job> planJobs(const Matrix& matrix, const std::string& out, const st
     for (const std::string& mode : matrix.modes)
       for (int k : matrix.skips) {
         const fs::path folder = fs::absolute(out) / "runs" / s.name / (mode + "-skip" + std::to_string(k));
+        // No alignment pictures: a matrix's runs are for its tables, and
+        // their times stay those of the estimator alone.
         std::string run = quote(exe) + " run " + quote(s.dataset) + " --out " + quote(folder.string()) + " --mode " + quote(mode) +
-                          " --skip " + std::to_string(k);
+                          " --skip " + std::to_string(k) + " --pictures-every 0";
         if (!matrix.config.empty()) run += " --config " + quote(matrix.config);
         jobs.push_back({folder.string(),
                         s.prepare + "mkdir -p " + quote(folder.string()) + " && " + run + " > " + quote(folder.string() + "/run.log") + " 2>&1",

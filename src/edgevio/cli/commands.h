@@ -52,6 +52,7 @@ struct RunArgs {
   std::string out, mode = "edge+imu+loop", config;  ///< default: the full system
   int skip = 0;
   bool realtime = false;
+  int pictures_every = 10;
 };
 /// `edgevio run`: estimate a trajectory (issues #5-#8).
 int run(const RunArgs& args, std::ostream& out, std::ostream& err);

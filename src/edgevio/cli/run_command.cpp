@@ -15,6 +15,8 @@ int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
     if (!mode) throw InputError("--mode: unknown mode '" + a.mode + "': use " + pipeline::kModeNames);
     pipeline::RunRequest r(a.source.path, a.out, *mode, a.skip);
     r.realtime = a.realtime;
+    if (a.pictures_every < 0) throw InputError("--pictures-every must be >= 0 (0: no alignment pictures)");
+    r.picture_stride = a.pictures_every;
     r.calib = a.source.calib;
     r.topics = a.source.topics;
     Progress progress("frames", Progress::stderrIsTerminal());

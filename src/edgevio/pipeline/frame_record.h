@@ -6,6 +6,7 @@
 // value from the record; frames.csv's header, its rows and the column
 // reference (docs/outputs.md) all come from that table.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "edgevio/estimator/external_check.h"
 #include "edgevio/estimator/vio_estimator.h"
 #include "edgevio/imu/preintegration.h"
+#include "edgevio/tracking/alignment_picture.h"
 #include "edgevio/tracking/edge_tracker.h"
 
 namespace edgevio::pipeline {
@@ -77,6 +79,8 @@ struct FrameRecord {
   geometry::SE3 T_w_b;                ///< the causal pose estimate of the frame
   std::optional<imu::NavState> state;  ///< the newest window state (velocity, biases) in the IMU modes
   std::vector<std::string> events;     ///< for the log and summary.json: restarts, IMU gaps, unreadable images
+  /// What the frame's alignment picture is drawn from, when the driver asked for pictures (not a column).
+  std::shared_ptr<const tracking::AlignmentPicture> picture;
 
   bool selfCheckPassed() const { return alignment.self_check_passed; }
   bool isKeyframe() const { return keyframe != tracking::KeyframeReason::kNone; }

@@ -18,7 +18,7 @@ SE3 poseOf(const imu::NavState& x) { return SE3(x.R_w_b, x.p_w); }
 
 Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tracker, const SE3& T_b_c,
                    const imu::ImuNoise& noise, const std::vector<imu::ImuSample>& imu, const imu::StaticInit& init,
-                   bool realtime)
+                   bool realtime, bool pictures)
     : mode_(mode),
       config_(config),
       tracker_(tracker),
@@ -26,6 +26,7 @@ Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tra
       init_(init),
       T_b_c_(T_b_c),
       realtime_(realtime),
+      pictures_(pictures),
       loss_(config.tracking.lost_after_failures) {
   if (mode.imu || mode.loop) estimator_.emplace(config.estimator, noise, T_b_c, mode.imu, init.gyro_bias);
 }
@@ -37,6 +38,10 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   r.dt_ms = frame.pyramid.dt_ms - frame.pyramid.lines_ms;
   r.lines_ms = frame.pyramid.lines_ms;
   if (t_first_ < 0) t_first_ = r.t_ns;
+  // A frame that is not aligned (a first frame, a restart) still has a picture: its edges.
+  if (pictures_ && !frame.pyramid.levels.empty())
+    r.picture = std::make_shared<const tracking::AlignmentPicture>(
+        tracking::AlignmentPicture{frame.pyramid.full, frame.pyramid.levels[0].edges, {}});
   if (windowed() && estimator_->initialized())
     processInWindow(std::move(frame), &r);
   else
@@ -187,6 +192,10 @@ Odometry::Tracked Odometry::track(const tracking::PreparedFrame& frame, const tr
     t.alignment.ms += first_ms;
   }
   r->alignment = t.alignment;
+  if (r->picture)
+    r->picture = std::make_shared<const tracking::AlignmentPicture>(tracking::AlignmentPicture{
+        r->picture->image, r->picture->edges,
+        tracking::reprojectReferencePoints(keyframes_.current()->data->depth, frame.pyramid, t.alignment.T_nr, config_.alignment)});
   // The link is not used when the alignment failed: the frame keeps its prediction.
   return t.passed() ? Tracked{t.T_w_b, t.keyframe_vote} : Tracked{p.T_w_b, KeyframeReason::kSelfCheckFailed};
 }

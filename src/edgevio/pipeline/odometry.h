@@ -44,9 +44,11 @@ class Odometry {
   /// the tracker's links are measured in. `realtime`: loop closure's time
   /// budget (loop.realtime_max_ms) applies; offline only its attempt counts
   /// bound the work, so that the result does not depend on the machine.
+  /// `pictures`: each record carries what its alignment picture is drawn
+  /// from (FrameRecord::picture).
   Odometry(Mode mode, const Config& config, const tracking::Tracker& tracker, const geometry::SE3& T_b_c,
            const imu::ImuNoise& noise, const std::vector<imu::ImuSample>& imu, const imu::StaticInit& init,
-           bool realtime = false);
+           bool realtime = false, bool pictures = false);
 
   /// The frame's pyramid must be built with the config's vision options
   /// (tracking::prepareFrame); a driver may do that on another thread.
@@ -102,6 +104,7 @@ class Odometry {
   imu::StaticInit init_;
   geometry::SE3 T_b_c_;
   bool realtime_;
+  bool pictures_;
   LossMonitor loss_;
   std::optional<estimator::VioEstimator> estimator_;  ///< the window's modes
   KeyframeStore keyframes_;

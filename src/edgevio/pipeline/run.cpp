@@ -18,6 +18,8 @@ namespace edgevio::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// Edges and points stay legible at this quality; a 752x480 picture is ~60 KB.
+constexpr int kPictureJpegQuality = 80;
 
 double peakResidentMb() {
   rusage usage{};
@@ -66,7 +68,8 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
                                                          to.static_accel_std_max, to.static_gyro_std_max);
   s.static_initialization = init.is_static;
   const tracking::EdgeTracker tracker(rect, config.vision, config.alignment, config.tracking);
-  Odometry odometry(req.mode, config, tracker, rect.T_b_rect(0), sequence->calibration().imu, sequence->imu(), init, req.realtime);
+  Odometry odometry(req.mode, config, tracker, rect.T_b_rect(0), sequence->calibration().imu, sequence->imu(), init, req.realtime,
+                    req.picture_stride > 0);
 
   const std::vector<std::size_t> frames = framesToRun(*sequence, req.skip);
   std::size_t done = 0;
@@ -79,11 +82,16 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
     r.total_ms = item.load_ms + std::chrono::duration<double, std::milli>(posed - t_start).count();
     r.latency_ms = std::chrono::duration<double, std::milli>(posed - item.released).count();
     writer.write(r);
+    std::vector<std::uint8_t> jpeg;
+    if (keepsPicture(r, done - 1, req.picture_stride)) {
+      jpeg = tracking::encodeJpeg(tracking::drawAlignmentPicture(*r.picture), kPictureJpegQuality);
+      writer.writePicture(r.t_ns, jpeg);
+    }
     const std::size_t events_before = s.events.size();
     s.count(r, t0);
     if (observer.event)
       for (std::size_t e = events_before; e < s.events.size(); ++e) observer.event(s.events[e]);
-    if (observer.frame) observer.frame(r);
+    if (observer.frame) observer.frame(r, jpeg);
     if (observer.progress) observer.progress(done + item.dropped_before, frames.size(), toSeconds(r.t_ns - t0));
   });
   if (writer.poses() == 0) throw InputError(req.dataset, 0, "no stereo pair could be read");

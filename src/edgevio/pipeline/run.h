@@ -4,7 +4,9 @@
 // (pipeline/threaded_pipeline.h), the per-frame stage code
 // (pipeline/odometry.h) and the writers, put together.
 #include <functional>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "edgevio/config/config.h"
 #include "edgevio/io/sequence.h"
@@ -26,6 +28,7 @@ struct RunRequest {
   bool realtime = false;  ///< release frames at their timestamps; drop those the pipeline has no room for
   std::string calib;      ///< a bag's calibration (empty: found beside it)
   io::BagTopics topics;   ///< a bag's topics (empty: found by type)
+  int picture_stride = 10;  ///< keep the alignment picture of every Nth uneventful frame (run_writer.h); 0: no pictures
 };
 
 /// What a caller may watch while a run goes.
@@ -34,8 +37,9 @@ struct RunObserver {
   std::function<void(std::size_t, std::size_t, double)> progress;
   /// Each event (window restart, IMU gap, unreadable image) as it happens, "t = … s: what".
   std::function<void(const std::string&)> event;
-  /// Each frame's record, after it was written.
-  std::function<void(const FrameRecord&)> frame;
+  /// Each frame's record, after it was written, with its alignment picture
+  /// as JPEG bytes when the frame kept one (else empty).
+  std::function<void(const FrameRecord&, const std::vector<std::uint8_t>&)> frame;
 };
 
 /// Throws InputError for bad input; a run that loses track returns failed = true.

@@ -42,6 +42,25 @@ void RunWriter::write(const FrameRecord& r) {
   frames_csv_ << frameRow(r) << "\n";
 }
 
+bool keepsPicture(const FrameRecord& r, std::size_t index, int stride) {
+  if (stride <= 0 || !r.picture) return false;
+  const bool eventful = r.isKeyframe() || (r.aligned && !r.selfCheckPassed()) ||
+                        r.external_check == ExternalCheck::kRejected || r.restart != WindowRestart::kNone ||
+                        r.lost_since_ns >= 0;
+  return eventful || index % static_cast<std::size_t>(stride) == 0;
+}
+
+void RunWriter::writePicture(std::int64_t t_ns, const std::vector<std::uint8_t>& jpeg) {
+  const fs::path dir = fs::path(out_dir_) / "alignment";
+  if (!pictures_folder_made_) {
+    fs::create_directories(dir);
+    pictures_folder_made_ = true;
+  }
+  std::ofstream f(dir / (std::to_string(t_ns) + ".jpg"), std::ios::binary);
+  f.write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size()));
+  if (!f) throw InputError((dir / (std::to_string(t_ns) + ".jpg")).string(), 0, "cannot write the alignment picture (disk full?)");
+}
+
 void RunWriter::finish(const RunSummary& summary) {
   frames_csv_.flush();
   std::ofstream js(fs::path(out_dir_) / "summary.json");
@@ -74,7 +93,12 @@ void writeOutputsReference(std::ostream& out) {
          "velocity and the gyroscope and accelerometer biases;\n"
          "- `frames.csv`: one row per processed frame, the columns below;\n"
          "- `summary.json`: the run as a whole, the keys below;\n"
-         "- `config.yaml`: the configuration that ran (docs/configuration.md).\n\n"
+         "- `config.yaml`: the configuration that ran (docs/configuration.md);\n"
+         "- `alignment/<t_ns>.jpg`: alignment pictures (unless `--pictures-every 0`): the frame's left image, darkened, "
+         "its Canny edges in white and the keyframe's reference points at the aligned pose: inliers green, outliers red, "
+         "points whose nearest edge failed the normal check blue. Kept for keyframes, frames whose alignment failed, "
+         "was rejected, restarted the window or began a loss, and every Nth frame (`--pictures-every N`, default 10);\n"
+         "- `view.html`: written by `edgevio view DIR`, the run in a browser.\n\n"
          "## frames.csv\n\n| column | unit | meaning |\n|---|---|---|\n";
   for (const FrameColumn& c : frameColumns()) {
     std::string meaning = c.meaning;

@@ -6,9 +6,13 @@
 //   frames.csv                          one FrameRecord per row (columns: frameColumns())
 //   summary.json                        the run as a whole (RunSummary)
 //   config.yaml                         the configuration that ran
+//   alignment/<t_ns>.jpg                the alignment pictures (tracking/alignment_picture.h) of
+//                                       keyframes, of frames that failed, were rejected, restarted
+//                                       the window or began a loss, and of every Nth frame
 #include <fstream>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "edgevio/config/config.h"
 #include "edgevio/io/trajectory_io.h"
@@ -17,11 +21,17 @@
 
 namespace edgevio::pipeline {
 
+/// Whether frame number `index` (from 0) keeps its alignment picture: every
+/// frame something happened to, and every `stride`-th of the rest (0: none).
+bool keepsPicture(const FrameRecord& record, std::size_t index, int stride);
+
 class RunWriter {
  public:
   /// Creates the folder and writes config.yaml. Throws InputError when it cannot write there.
   RunWriter(const std::string& out_dir, const Config& config, bool with_velocity_and_bias);
   void write(const FrameRecord& record);
+  /// Writes alignment/<t_ns>.jpg.
+  void writePicture(std::int64_t t_ns, const std::vector<std::uint8_t>& jpeg);
   std::size_t poses() const { return tum_.count(); }
   /// Writes summary.json.
   void finish(const RunSummary& summary);
@@ -30,6 +40,7 @@ class RunWriter {
   std::string out_dir_;
   std::ofstream frames_csv_;
   io::TrajectoryWriter tum_, euroc_;
+  bool pictures_folder_made_ = false;
 };
 
 /// The reference of a run folder's files as Markdown (docs/outputs.md): every

@@ -58,10 +58,11 @@ Vec2 mappedNormal(const Vec3& P, const Eigen::Vector2f& n_ref, const Jacobian26&
 
 bool residual(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, const vision::DistanceTransform& dt,
               int border, double* r, Jacobian16* J, bool point_to_line, double* distance,
-              const Eigen::Vector2f* n_ref = nullptr, double* normal_cos = nullptr) {
+              const Eigen::Vector2f* n_ref = nullptr, double* normal_cos = nullptr, Vec2* uv_out = nullptr) {
   Vec2 uv;
   Jacobian26 Juv;
   if (!project(P, T, c, &uv, J || n_ref ? &Juv : nullptr)) return false;
+  if (uv_out) *uv_out = uv;
   if (uv.x() < border || uv.y() < border || uv.x() > c.width - 1 - border || uv.y() > c.height - 1 - border) return false;
   if (point_to_line && dt.hasLines()) {
     if (distance) *distance = dt.value(uv.x(), uv.y());
@@ -108,44 +109,62 @@ struct LevelStats {
   int considered = 0;  ///< points evaluated (all, or the strided subset)
 };
 
-/// `normals`: the points' edge normals (null, or of another size: none).
-LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector2f>* normals, const SE3& T,
-                      const vision::EdgeLevel& level, const AlignmentOptions& o, bool laplacian, bool finest) {
-  LevelStats s;
+/// Calls f(uv, r, J, V, w, other_edge) for each reference point (or an even
+/// stride of them, o.max_points) that lands inside the level's border: its
+/// pixel, residual, Jacobian, distance V and robust weight w. `normals`: the
+/// points' edge normals (null, or of another size: none). Returns the points
+/// considered.
+template <class F>
+int forEachWeightedPoint(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector2f>* normals,
+                         const SE3& T, const vision::EdgeLevel& level, const AlignmentOptions& o, bool finest, F&& f) {
   // An even stride keeps the points spread over the image (and deterministic).
   const std::size_t stride =
       o.max_points > 0 && points.size() > static_cast<std::size_t>(o.max_points) ? (points.size() + static_cast<std::size_t>(o.max_points) - 1) / static_cast<std::size_t>(o.max_points) : 1;
+  const bool laplacian = o.weight == RobustWeight::kLaplacian;
   Jacobian16 J;
+  Vec2 uv;
   double r = 0.0, dist = 0.0;
   const PoseRt Trt(T);
-  // Upper triangle of Σ w·JᵀJ, row by row (21 entries), and Σ w·r·Jᵀ.
-  double h[21] = {};
   // The distance field's consistent pull towards edges gives the wide basin
   // on coarse levels; the line residual refines on the finest one.
   const bool p2l = o.residual == Residual::kPointToLine && finest;
   const bool check_normals = p2l && o.max_normal_angle_deg > 0 && normals && normals->size() == points.size();
   const double min_cos = std::cos(o.max_normal_angle_deg * kDegToRad);
+  int considered = 0;
   for (std::size_t idx = 0; idx < points.size(); idx += stride) {
     const Eigen::Vector3f& pf = points[idx];
-    ++s.considered;
+    ++considered;
     double normal_cos = 1.0;
     if (!residual(pf.cast<double>(), Trt, level.camera, level.dt, o.border_px, &r, &J, p2l, &dist,
-                  check_normals ? &(*normals)[idx] : nullptr, &normal_cos))
+                  check_normals ? &(*normals)[idx] : nullptr, &normal_cos, &uv))
       continue;
     // Weights from the distance V: the robust kernel judges how far the point
     // is from any edge, whichever residual is minimised. A nearest edge whose
     // normal (with its sign) points elsewhere than the reference edge's is
     // another edge (the other side of a thin line, a crossing edge): weight 0.
-    const double w = normal_cos < min_cos ? 0.0 : laplacian ? std::exp(-dist) : 1.0 / (1.0 + dist * dist / o.cauchy_c2);
-    int k = 0;
-    for (int i = 0; i < 6; ++i) {
-      const double wji = w * J[i];
-      for (int j = i; j < 6; ++j) h[k++] += wji * J[j];
-    }
-    s.g += w * r * J.transpose();
-    s.sum_r += dist;
-    ++s.visible;
+    const bool other_edge = normal_cos < min_cos;
+    const double w = other_edge ? 0.0 : laplacian ? std::exp(-dist) : 1.0 / (1.0 + dist * dist / o.cauchy_c2);
+    f(uv, r, J, dist, w, other_edge);
   }
+  return considered;
+}
+
+LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector2f>* normals, const SE3& T,
+                      const vision::EdgeLevel& level, const AlignmentOptions& o, bool finest) {
+  LevelStats s;
+  // Upper triangle of Σ w·JᵀJ, row by row (21 entries), and Σ w·r·Jᵀ.
+  double h[21] = {};
+  s.considered = forEachWeightedPoint(points, normals, T, level, o, finest,
+                                      [&](const Vec2&, double r, const Jacobian16& J, double dist, double w, bool) {
+                                        int k = 0;
+                                        for (int i = 0; i < 6; ++i) {
+                                          const double wji = w * J[i];
+                                          for (int j = i; j < 6; ++j) h[k++] += wji * J[j];
+                                        }
+                                        s.g += w * r * J.transpose();
+                                        s.sum_r += dist;
+                                        ++s.visible;
+                                      });
   int k = 0;
   for (int i = 0; i < 6; ++i)
     for (int j = i; j < 6; ++j) s.H(i, j) = s.H(j, i) = h[k++];
@@ -163,12 +182,11 @@ struct LevelInput {
 /// Gauss-Newton on one level from T (eqs 9-11), with the rotation prior;
 /// returns the best iterate by mean distance.
 SE3 alignLevel(const LevelInput& in, SE3 T, const AlignmentOptions& o, const RotationPrior* prior, int* iterations) {
-  const bool laplacian = o.weight == RobustWeight::kLaplacian;
   SE3 best = T;
   double best_mean = std::numeric_limits<double>::infinity();
   int stalled = 0;
   for (int it = 0; it < o.max_iterations_per_level; ++it) {
-    const LevelStats s = accumulate(in.points, in.normals, T, in.level, o, laplacian, in.l == 0);
+    const LevelStats s = accumulate(in.points, in.normals, T, in.level, o, in.l == 0);
     if (s.visible < o.min_points) break;
     const double mean = s.sum_r / s.visible;
     // Near the optimum points switch between neighbouring edges, so steps
@@ -197,14 +215,14 @@ SE3 alignLevel(const LevelInput& in, SE3 T, const AlignmentOptions& o, const Rot
     if (xi.norm() < o.min_step) break;
   }
   // The last step is evaluated too: it may be the best iterate.
-  const LevelStats last = accumulate(in.points, in.normals, T, in.level, o, laplacian, in.l == 0);
+  const LevelStats last = accumulate(in.points, in.normals, T, in.level, o, in.l == 0);
   return last.visible < o.min_points || last.sum_r / last.visible > best_mean ? best : T;
 }
 
 /// The self check and the covariance (paper §5.3, §6.3) of T at level `finest`.
 void evaluateFit(const LevelInput& in, const SE3& T, const AlignmentOptions& o, AlignmentResult* res) {
   const int finest = in.l;
-  const LevelStats s = accumulate(in.points, in.normals, T, in.level, o, o.weight == RobustWeight::kLaplacian, finest == 0);
+  const LevelStats s = accumulate(in.points, in.normals, T, in.level, o, finest == 0);
   res->points_used = s.visible;
   res->visible_ratio = s.considered == 0 ? 0.0 : static_cast<double>(s.visible) / static_cast<double>(s.considered);
   res->mean_distance_px = s.visible > 0 ? s.sum_r / s.visible : std::numeric_limits<double>::infinity();
@@ -250,6 +268,20 @@ AlignmentResult alignEdges(const vision::KeyframeDepth& reference, const vision:
   res.T_nr = T;
   res.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return res;
+}
+
+std::vector<ReprojectedPoint> reprojectReferencePoints(const vision::KeyframeDepth& reference,
+                                                       const vision::EdgePyramid& current, const SE3& T_nr,
+                                                       const AlignmentOptions& o) {
+  std::vector<ReprojectedPoint> out;
+  if (reference.points.empty() || current.levels.empty()) return out;
+  const std::vector<Eigen::Vector2f>* normals = reference.normals.empty() ? nullptr : &reference.normals[0];
+  forEachWeightedPoint(reference.points[0], normals, T_nr, current.levels[0], o, true,
+                       [&](const Vec2& uv, double, const Jacobian16&, double, double w, bool other_edge) {
+                         const PointFit fit = other_edge ? PointFit::kOtherEdge : w >= 0.5 ? PointFit::kInlier : PointFit::kOutlier;
+                         out.push_back({static_cast<float>(uv.x()), static_cast<float>(uv.y()), fit});
+                       });
+  return out;
 }
 
 }  // namespace edgevio::tracking

@@ -84,4 +84,24 @@ AlignmentResult alignEdges(const vision::KeyframeDepth& reference,
                            const AlignmentOptions& options, int coarsest = -1, int finest = 0,
                            const RotationPrior* rotation_prior = nullptr);
 
+/// How the finest level of an alignment weighs a reference point.
+enum class PointFit {
+  kInlier,     ///< robust weight ≥ ½: it lies on an edge
+  kOutlier,    ///< robust weight < ½: far from any edge
+  kOtherEdge,  ///< weight 0: its nearest edge's normal failed the normal check (max_normal_angle_deg)
+};
+
+struct ReprojectedPoint {
+  float u = 0, v = 0;  ///< level-0 pixel
+  PointFit fit = PointFit::kInlier;
+};
+
+/// The keyframe's level-0 reference points at T_nr in the current image, as
+/// the alignment's finest level weighs them (the same stride of points);
+/// points outside the border or behind the camera are left out. What the
+/// alignment picture draws.
+std::vector<ReprojectedPoint> reprojectReferencePoints(const vision::KeyframeDepth& reference,
+                                                       const vision::EdgePyramid& current, const geometry::SE3& T_nr,
+                                                       const AlignmentOptions& options);
+
 }  // namespace edgevio::tracking
