@@ -98,6 +98,12 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--out", bench.out, "Output folder (data/, runs/, report.md, report.csv)")->required();
   bench_cmd->add_option("--jobs", bench.jobs, "Runs in parallel on this machine");
   bench_cmd->add_flag("--emit-jobs", bench.emit_jobs, "Print one self-contained shell command per run instead");
+
+  cli::ViewArgs view;
+  auto* view_cmd = app.add_subcommand("view", "Write a run folder as one self-contained HTML page (RUN_DIR/view.html)");
+  view_cmd->add_option("run", view.run_dir, "A run folder (edgevio run --out)")->required();
+  view_cmd->add_option("--out", view.out, "The page to write (default: RUN_DIR/view.html)");
+
   cli::DemoArgs demo;
   auto* demo_cmd = app.add_subcommand("demo", "Simulate, estimate and evaluate a default sequence");
   demo_cmd->add_option("--out", demo.out, "Output folder");
@@ -126,6 +132,7 @@ int main(int argc, char** argv) {
   if (*sim_cmd) return cli::simulate(sim, std::cout, std::cerr);
   if (*bench_cmd) return cli::bench(bench, std::cout, std::cerr);
   if (*demo_cmd) return cli::demo(demo, std::cout, std::cerr);
+  if (*view_cmd) return cli::view(view, std::cout, std::cerr);
   std::cerr << app.help();
   return cli::kExitError;
 }

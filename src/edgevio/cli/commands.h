@@ -81,6 +81,12 @@ struct BenchArgs {
 /// `edgevio bench MATRIX.yaml --out DIR [--jobs N] [--emit-jobs]` (issue #8).
 int bench(const BenchArgs& args, std::ostream& out, std::ostream& err);
 
+struct ViewArgs {
+  std::string run_dir, out;  ///< out empty: RUN_DIR/view.html
+};
+/// `edgevio view RUN_DIR`: the run as one self-contained HTML page.
+int view(const ViewArgs& args, std::ostream& out, std::ostream& err);
+
 /// `edgevio eval --results DIR`: evaluates every run folder, writes DIR/report.md
 /// and DIR/report.csv, prints the markdown table.
 int evalResults(const std::string& dir, const eval::EvalOptions& options, std::ostream& out, std::ostream& err);

@@ -29,6 +29,8 @@ class TableReader {
   const std::string& path() const { return path_; }
   const std::string& field(std::size_t i) const { return fields_.at(i); }
 
+  /// The header's column names (Header::kColumnNames).
+  const std::vector<std::string>& columns() const { return names_; }
   /// The index of a named column; throws InputError naming the file when there is none.
   std::size_t column(const std::string& name) const;
 

@@ -139,6 +139,12 @@ std::vector<io::Trajectory> segmentsBetweenLosses(const io::Trajectory& est, con
   return kept;
 }
 
+RunEvaluation evaluateRunFolder(const std::string& run_dir, const EvalOptions& options) {
+  fs::path run = fs::absolute(run_dir).lexically_normal();
+  if (run.filename().empty()) run = run.parent_path();  // "DIR/"
+  return evaluateRun(run.parent_path(), run, options);
+}
+
 std::vector<RunEvaluation> evaluateRunFolders(const std::string& dir, const EvalOptions& options) {
   if (!fs::is_directory(dir)) throw InputError(dir, 0, "results folder not found");
   std::set<fs::path> runs;

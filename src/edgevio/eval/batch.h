@@ -48,6 +48,9 @@ inline constexpr std::size_t kMinSegmentPoses = 20;
 std::vector<io::Trajectory> segmentsBetweenLosses(const io::Trajectory& est, const std::vector<std::pair<double, double>>& lost);
 
 /// Finds and evaluates every run folder under `dir`, sorted by sequence, mode, folder.
+/// One run folder, as a row of evaluateRunFolders would be.
+RunEvaluation evaluateRunFolder(const std::string& run_dir, const EvalOptions& options);
+
 std::vector<RunEvaluation> evaluateRunFolders(const std::string& dir, const EvalOptions& options);
 
 void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& runs, const EvalOptions& options);
