@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--realtime", run.realtime, "Play the dataset at sensor rate, dropping frames when behind");
   run_cmd->add_option("--pictures-every", run.pictures_every,
                       "Keep the alignment picture of every Nth frame besides the eventful ones (default 10; 0: none)");
+  run_cmd->add_option("--mcap", run.mcap, "Also write an MCAP recording for Foxglove or Lichtblick (poses, paths, pictures, events)");
 
   cli::ConvertArgs conv;
   auto* convert_cmd = app.add_subcommand("convert", "Write a dataset (ASL folder or bag) as a ROS 1 bag, Kalibr calibration beside it");

@@ -53,6 +53,7 @@ struct RunArgs {
   int skip = 0;
   bool realtime = false;
   int pictures_every = 10;
+  std::string mcap;  ///< an MCAP recording to write (empty: none)
 };
 /// `edgevio run`: estimate a trajectory (issues #5-#8).
 int run(const RunArgs& args, std::ostream& out, std::ostream& err);

@@ -5,6 +5,9 @@
 #include "edgevio/common/error.h"
 #include "edgevio/config/config.h"
 #include "edgevio/pipeline/run.h"
+#include "edgevio/view/recording.h"
+
+#include <memory>
 
 namespace edgevio::cli {
 
@@ -23,14 +26,21 @@ int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
     pipeline::RunObserver observer;
     observer.progress = [&](std::size_t done, std::size_t total, double seq_s) { progress.update(done, total, seq_s); };
     observer.event = [&](const std::string& event) { err << "warning: " << event << "\n"; };
+    std::unique_ptr<view::Recording> recording;
+    if (!a.mcap.empty()) {
+      observer.opened = [&](const io::Sequence& sequence) { recording = std::make_unique<view::Recording>(a.mcap, sequence); };
+      observer.frame = [&](const pipeline::FrameRecord& record, const std::vector<std::uint8_t>& jpeg) { recording->write(record, jpeg); };
+    }
     const pipeline::RunSummary s = pipeline::run(r, config, observer);
+    if (recording) recording->close();
     out << "mode " << a.mode << ": " << s.frames << " frames, " << s.keyframes << " keyframes, "
         << s.self_check_failures << " self-check failures, " << s.external_check_rejections
         << " external-check rejections, " << (a.realtime ? std::to_string(s.dropped_frames) + " frames dropped (real time), " : std::string())
         << s.loop_closures << " loop closures, " << s.estimator_resets << " estimator resets, " << s.wall_s << " s wall, real-time factor "
         << s.realtime_factor << (s.lost_intervals.empty() ? std::string() : ", " + s.lossText())
         << (s.failed ? ", FAILED: " + s.failure : std::string()) << "\n"
-        << "wrote " << a.out << "/{trajectory_tum.txt, trajectory.csv, frames.csv, summary.json, config.yaml}\n";
+        << "wrote " << a.out << "/{trajectory_tum.txt, trajectory.csv, frames.csv, summary.json, config.yaml"
+        << (a.pictures_every > 0 ? ", alignment/" : "") << "}" << (a.mcap.empty() ? "" : " and " + a.mcap) << "\n";
     return s.failed ? kExitError : kExitOk;
   } catch (const InputError& e) {
     err << "error: " << e.what() << "\n";

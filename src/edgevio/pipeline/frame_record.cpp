@@ -116,16 +116,22 @@ std::string frameHeader() {
   return h;
 }
 
-std::string frameRow(const FrameRecord& record) {
-  std::string row;
+std::vector<std::string> frameCells(const FrameRecord& record) {
+  std::vector<std::string> cells;
+  cells.reserve(frameColumns().size());
   char buf[64];
   for (const FrameColumn& c : frameColumns()) {
     const Cell v = c.value(record);
     if (v.kind == Cell::Kind::kInteger) std::snprintf(buf, sizeof buf, "%lld", v.integer);
     else if (v.kind == Cell::Kind::kReal) std::snprintf(buf, sizeof buf, c.significant ? "%.*g" : "%.*f", c.precision, v.real);
-    if (!row.empty()) row += ',';
-    row += v.kind == Cell::Kind::kText ? v.text : buf;
+    cells.emplace_back(v.kind == Cell::Kind::kText ? v.text : buf);
   }
+  return cells;
+}
+
+std::string frameRow(const FrameRecord& record) {
+  std::string row;
+  for (const std::string& cell : frameCells(record)) row += (row.empty() ? "" : ",") + cell;
   return row;
 }
 

@@ -117,6 +117,8 @@ const std::vector<FrameColumn>& frameColumns();
 
 /// frames.csv's header line (without the newline).
 std::string frameHeader();
+/// One record's cells as frames.csv writes them, in column order.
+std::vector<std::string> frameCells(const FrameRecord& record);
 /// One record as a frames.csv row (without the newline).
 std::string frameRow(const FrameRecord& record);
 

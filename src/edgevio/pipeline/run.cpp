@@ -60,6 +60,7 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
   const camera::StereoRectifier rect(sequence->calibration(), config.rectification);
   RunWriter writer(req.out_dir, config, req.mode.imu);
   RunSummary s = startSummary(req, *sequence);
+  if (observer.opened) observer.opened(*sequence);
 
   // Static start: gravity-aligned initial orientation and gyro bias (METHOD.md §5).
   const std::int64_t t0 = sequence->frameTime(0);

@@ -33,6 +33,8 @@ struct RunRequest {
 
 /// What a caller may watch while a run goes.
 struct RunObserver {
+  /// The sequence, once opened (its calibration and ground truth), before any frame.
+  std::function<void(const io::Sequence&)> opened;
   /// (frames done, frames total, sequence seconds done)
   std::function<void(std::size_t, std::size_t, double)> progress;
   /// Each event (window restart, IMU gap, unreadable image) as it happens, "t = … s: what".
