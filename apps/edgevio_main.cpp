@@ -47,6 +47,9 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--realtime", run.realtime, "Play the dataset at sensor rate, dropping frames when behind");
   run_cmd->add_option("--pictures-every", run.pictures_every,
                       "Keep the alignment picture of every Nth frame besides the eventful ones (default 10; 0: none)");
+  run_cmd->add_option("--view", run.view_port, "Serve the live viewer on 127.0.0.1:PORT while the run goes (default 8700; 0: any free port)")
+      ->expected(0, 1)
+      ->default_str("8700");
   run_cmd->add_option("--mcap", run.mcap, "Also write an MCAP recording for Foxglove or Lichtblick (poses, paths, pictures, events)");
 
   cli::ConvertArgs conv;

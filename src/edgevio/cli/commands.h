@@ -53,7 +53,8 @@ struct RunArgs {
   int skip = 0;
   bool realtime = false;
   int pictures_every = 10;
-  std::string mcap;  ///< an MCAP recording to write (empty: none)
+  std::string mcap;    ///< an MCAP recording to write (empty: none)
+  int view_port = -1;  ///< serve the live viewer on this port (0: any free one; -1: no viewer)
 };
 /// `edgevio run`: estimate a trajectory (issues #5-#8).
 int run(const RunArgs& args, std::ostream& out, std::ostream& err);

@@ -5,6 +5,7 @@
 #include "edgevio/common/error.h"
 #include "edgevio/config/config.h"
 #include "edgevio/pipeline/run.h"
+#include "edgevio/view/live_view.h"
 #include "edgevio/view/recording.h"
 
 #include <memory>
@@ -27,12 +28,21 @@ int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
     observer.progress = [&](std::size_t done, std::size_t total, double seq_s) { progress.update(done, total, seq_s); };
     observer.event = [&](const std::string& event) { err << "warning: " << event << "\n"; };
     std::unique_ptr<view::Recording> recording;
-    if (!a.mcap.empty()) {
-      observer.opened = [&](const io::Sequence& sequence) { recording = std::make_unique<view::Recording>(a.mcap, sequence); };
-      observer.frame = [&](const pipeline::FrameRecord& record, const std::vector<std::uint8_t>& jpeg) { recording->write(record, jpeg); };
-    }
+    std::unique_ptr<view::LiveView> live;
+    observer.opened = [&](const io::Sequence& sequence) {
+      if (!a.mcap.empty()) recording = std::make_unique<view::Recording>(a.mcap, sequence);
+      if (a.view_port >= 0) {
+        live = std::make_unique<view::LiveView>(a.view_port, a.mode, sequence.name());
+        err << "viewer: http://127.0.0.1:" << live->port() << "/ (open it in a browser while the run goes)" << std::endl;
+      }
+    };
+    observer.frame = [&](const pipeline::FrameRecord& record, const std::vector<std::uint8_t>& jpeg) {
+      if (recording) recording->write(record, jpeg);
+      if (live) live->frame(record, jpeg);
+    };
     const pipeline::RunSummary s = pipeline::run(r, config, observer);
     if (recording) recording->close();
+    if (live) live->finish(s);
     out << "mode " << a.mode << ": " << s.frames << " frames, " << s.keyframes << " keyframes, "
         << s.self_check_failures << " self-check failures, " << s.external_check_rejections
         << " external-check rejections, " << (a.realtime ? std::to_string(s.dropped_frames) + " frames dropped (real time), " : std::string())
