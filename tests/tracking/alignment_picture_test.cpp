@@ -44,6 +44,23 @@ TEST(AlignmentPicture, DrawsLevelZeroEdgesAndPointsAtFullResolution) {
   EXPECT_NE(pointColour(PointFit::kOutlier), pointColour(PointFit::kOtherEdge));
 }
 
+TEST(AlignmentPicture, AtLevelZeroSizeEachPointIsOnePixel) {
+  // What a run draws: the level-0 image itself, so points and edges land on
+  // their own pixels.
+  AlignmentPicture p;
+  p.image = cv::Mat(240, 376, CV_8UC1, cv::Scalar(100));
+  p.edges = cv::Mat::zeros(240, 376, CV_8UC1);
+  p.edges.at<uchar>(7, 9) = 255;
+  p.points = {{100.4f, 50.6f, PointFit::kOutlier}};
+  const cv::Mat out = drawAlignmentPicture(p);
+  ASSERT_EQ(out.size(), p.image.size());
+  EXPECT_EQ(colourAt(out, 100, 51), asVec(pointColour(PointFit::kOutlier)));
+  for (const auto& [x, y] : {std::pair{99, 51}, std::pair{101, 51}, std::pair{100, 50}, std::pair{100, 52}})
+    EXPECT_EQ(colourAt(out, x, y), colourAt(out, 0, 0)) << x << "," << y;
+  EXPECT_NE(colourAt(out, 9, 7), colourAt(out, 0, 0));   // the edge pixel
+  EXPECT_EQ(colourAt(out, 10, 7), colourAt(out, 0, 0));  // and only it
+}
+
 TEST(AlignmentPicture, EncodesAJpegThatDecodesToThePicture) {
   AlignmentPicture p;
   p.image = cv::Mat(48, 64, CV_8UC1, cv::Scalar(120));

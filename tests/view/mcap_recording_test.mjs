@@ -2,7 +2,8 @@
 // @mcap/core (the MCAP project's own TypeScript library, from npm). Every
 // channel and schema is there; the per-frame channels hold one message per
 // frames.csv row, the pictures' channel one per kept picture, the
-// keyframes' one per keyframe; times increase; the summary agrees; the
+// keyframes' one per keyframe, the paths' one per second of sensor time
+// and one at the end, the last holding the whole path; times increase; the summary agrees; the
 // messages are the JSON their schemas say. And writing it changes nothing
 // in the run's trajectory.
 // Usage: node mcap_recording_test.mjs EDGEVIO_EXE WORK_DIR
@@ -25,6 +26,12 @@ const header = lines[0].split(',');
 const rows = lines.slice(1).map(l => l.split(','));
 const keyframes = rows.filter(r => r[header.indexOf('keyframe')] === '1').length;
 const pictures = readdirSync(`${work}/run/alignment`).length;
+// Paths: at the first frame, then at each frame a second or more after the
+// last sent, and at the last frame (recording.h).
+const times = rows.map(r => BigInt(r[header.indexOf('timestamp_ns')]));
+let pathSends = 0, sent = -1n;
+for (const t of times) if (sent < 0n || t - sent >= 1000000000n) { ++pathSends; sent = t; }
+if (sent !== times[times.length - 1]) ++pathSends;
 
 const bytes = readFileSync(`${work}/run.mcap`);
 const reader = new McapStreamReader();
@@ -47,8 +54,8 @@ check(header0 && header0.library === 'edgevio', 'the header names its writer');
 const expected = {
   '/tf': ['foxglove.FrameTransforms', rows.length],
   '/pose': ['foxglove.PoseInFrame', rows.length],
-  '/path/estimate': ['foxglove.PosesInFrame', rows.length],
-  '/path/ground_truth': ['foxglove.PosesInFrame', rows.length],
+  '/path/estimate': ['foxglove.PosesInFrame', pathSends],
+  '/path/ground_truth': ['foxglove.PosesInFrame', pathSends],
   '/keyframes': ['foxglove.PosesInFrame', keyframes],
   '/alignment': ['foxglove.CompressedImage', pictures],
   '/frame': ['edgevio.FrameRecord', rows.length],
@@ -80,6 +87,10 @@ check(Object.keys(first).length === header.length && String(first.timestamp_ns) 
 const image = JSON.parse(new TextDecoder().decode(messages.get(byTopic.get('/alignment').id)[0].data));
 const jpeg = Buffer.from(image.data, 'base64');
 check(image.format === 'jpeg' && jpeg[0] === 0xff && jpeg[1] === 0xd8, 'the alignment pictures are base64 JPEG');
+const paths = messages.get(byTopic.get('/path/estimate').id);
+const lastPath = JSON.parse(new TextDecoder().decode(paths[paths.length - 1].data));
+check(paths[paths.length - 1].logTime === times[times.length - 1] && lastPath.poses.length === rows.length,
+      `the last path, at the last frame, holds every frame's pose (${lastPath.poses.length})`);
 const tf = JSON.parse(new TextDecoder().decode(messages.get(byTopic.get('/tf').id)[0].data));
 check(tf.transforms.map(x => `${x.parent_frame_id}>${x.child_frame_id}`).join(' ') === 'world>body body>cam0 body>cam1',
       '/tf holds world → body → cam0, cam1');

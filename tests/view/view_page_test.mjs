@@ -30,7 +30,7 @@ try {
   await page.click('#timeline .frame.keyframe');
   await page.waitForFunction(() => document.getElementById('picture').naturalWidth > 0, null, { timeout: 10000 });
   const width = await page.evaluate(() => document.getElementById('picture').naturalWidth);
-  check(width === 752, `a keyframe's alignment picture is shown (${width} px wide)`);
+  check(width === 376, `a keyframe's alignment picture is shown (${width} px wide: level 0 of a 752x480 camera)`);
   const row = await page.evaluate(() => document.querySelectorAll('#row-table tr').length);
   const columns = readFileSync(`${work}/run/frames.csv`, 'utf8').split('\n')[0].split(',').length;
   check(row === columns, `its frames.csv row is shown (${row} of ${columns} columns)`);

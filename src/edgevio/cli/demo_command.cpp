@@ -12,6 +12,7 @@
 #include "edgevio/eval/svg_plot.h"
 #include "edgevio/pipeline/run.h"
 #include "edgevio/sim/simulator.h"
+#include "edgevio/view/run_view.h"
 
 namespace edgevio::cli {
 
@@ -56,11 +57,14 @@ int demo(const DemoArgs& a, std::ostream& out, std::ostream& err) {
       eval::writeReportMarkdown(md, runs, config.eval);
       eval::writeReportCsv(csv, runs);
     }
+    std::vector<std::string> notes;
+    view::writeRunView(run.string(), (run / "view.html").string(), config.eval, &notes);
     out << "\n" << s.frames << " frames, " << s.keyframes << " keyframes, " << s.loop_closures << " loop closures, real-time factor "
         << s.realtime_factor << (s.lost_intervals.empty() ? std::string() : "; " + s.lossText())
         << (s.failed ? "; RUN FAILED: " + s.failure : std::string()) << "\n"
         << "trajectory: " << (run / "trajectory_tum.txt").string() << "\n"
         << "plot:       " << (run / "eval.svg").string() << "\n"
+        << "viewer:     " << (run / "view.html").string() << " (open it in a browser)\n"
         << "report:     " << (root / "report.md").string() << "\n";
     return s.failed ? kExitError : kExitOk;
   } catch (const InputError& e) {

@@ -41,7 +41,7 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   // A frame that is not aligned (a first frame, a restart) still has a picture: its edges.
   if (pictures_ && !frame.pyramid.levels.empty())
     r.picture = std::make_shared<const tracking::AlignmentPicture>(
-        tracking::AlignmentPicture{frame.pyramid.full, frame.pyramid.levels[0].edges, {}});
+        tracking::AlignmentPicture{frame.pyramid.levels[0].image, frame.pyramid.levels[0].edges, {}});
   if (windowed() && estimator_->initialized())
     processInWindow(std::move(frame), &r);
   else

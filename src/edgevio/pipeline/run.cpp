@@ -18,7 +18,7 @@ namespace edgevio::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-// Edges and points stay legible at this quality; a 752x480 picture is ~60 KB.
+// Edges and points stay legible at this quality; a 376x240 picture is ~25 KB.
 constexpr int kPictureJpegQuality = 80;
 
 double peakResidentMb() {

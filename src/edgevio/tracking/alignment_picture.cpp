@@ -22,19 +22,25 @@ cv::Mat drawAlignmentPicture(const AlignmentPicture& p) {
   p.image.convertTo(grey, CV_8U, 0.45);  // darkened: the edges and points stand out
   cv::Mat out;
   cv::cvtColor(grey, out, cv::COLOR_GRAY2BGR);
-  // Level 0 is the image halved (vision/edge_pyramid.h): its pixel (u, v)
-  // covers full-resolution pixels 2u..2u+1, 2v..2v+1, centred at 2u + 0.5.
-  const double sx = p.edges.empty() ? 2.0 : static_cast<double>(p.image.cols) / p.edges.cols;
-  const double sy = p.edges.empty() ? 2.0 : static_cast<double>(p.image.rows) / p.edges.rows;
+  // An image s times level 0's size: level-0 pixel (u, v) covers pixels
+  // s·u .. s·u + s − 1, centred at s·u + (s − 1)/2.
+  const double sx = p.edges.empty() ? 1.0 : static_cast<double>(p.image.cols) / p.edges.cols;
+  const double sy = p.edges.empty() ? 1.0 : static_cast<double>(p.image.rows) / p.edges.rows;
   if (!p.edges.empty()) {
-    cv::Mat edges_full;
-    cv::resize(p.edges, edges_full, p.image.size(), 0, 0, cv::INTER_NEAREST);
-    out.setTo(cv::Scalar(190, 190, 190), edges_full);
+    cv::Mat edges = p.edges;
+    if (edges.size() != p.image.size()) cv::resize(p.edges, edges, p.image.size(), 0, 0, cv::INTER_NEAREST);
+    out.setTo(cv::Scalar(190, 190, 190), edges);
   }
+  const int radius = sx >= 2.0 ? 1 : 0;  // a point stays about one level-0 pixel
   for (const ReprojectedPoint& q : p.points) {
     const int x = static_cast<int>(std::lround(sx * q.u + 0.5 * (sx - 1.0)));
     const int y = static_cast<int>(std::lround(sy * q.v + 0.5 * (sy - 1.0)));
-    cv::circle(out, {x, y}, 1, pointColour(q.fit), cv::FILLED, cv::LINE_8);
+    if (x < 0 || y < 0 || x >= out.cols || y >= out.rows) continue;
+    if (radius == 0)
+      out.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<uchar>(pointColour(q.fit)[0]), static_cast<uchar>(pointColour(q.fit)[1]),
+                                          static_cast<uchar>(pointColour(q.fit)[2]));
+    else
+      cv::circle(out, {x, y}, radius, pointColour(q.fit), cv::FILLED, cv::LINE_8);
   }
   return out;
 }

@@ -1,7 +1,8 @@
 #pragma once
 // The alignment picture: the one image that tells whether a frame's
-// alignment worked. The current frame's rectified left image (darkened), its
-// level-0 Canny edges (white), and the keyframe's reference edge points at
+// alignment worked. The current frame's image at level 0 of its pyramid,
+// where the alignment's residuals live (half the camera's resolution;
+// darkened), its Canny edges (white), and the keyframe's reference edge points at
 // the alignment's pose, coloured by how the finest level weighed them:
 // inliers green, outliers red, points whose nearest edge failed the normal
 // check blue (tracking/edge_alignment.h, reprojectReferencePoints). Reference
@@ -17,8 +18,8 @@ namespace edgevio::tracking {
 
 /// What a picture is drawn from; cheap to keep (the images are shared, not copied).
 struct AlignmentPicture {
-  cv::Mat image;   ///< the rectified left image at full resolution (CV_8UC1)
-  cv::Mat edges;   ///< level-0 Canny edges (CV_8UC1, 255 on edges; half the image's resolution)
+  cv::Mat image;   ///< the image the picture is drawn on (CV_8UC1): level 0, or any multiple of its size
+  cv::Mat edges;   ///< level-0 Canny edges (CV_8UC1, 255 on edges)
   std::vector<ReprojectedPoint> points;  ///< level-0 pixels; empty when the frame was not aligned
 };
 

@@ -128,6 +128,17 @@ Recording::Recording(const std::string& path, const io::Sequence& sequence) : mc
   frame_ = channel("edgevio.FrameRecord", frameRecordSchema(), "/frame");
 }
 
+void Recording::writePaths(std::int64_t t_ns) {
+  mcap_.write(path_, static_cast<std::uint64_t>(t_ns), posesInFrame(t_ns, estimate_, kMaxPathPoses));
+  if (truth_path_) mcap_.write(truth_path_, static_cast<std::uint64_t>(t_ns), posesInFrame(t_ns, truth_so_far_, kMaxPathPoses));
+  paths_sent_ns_ = t_ns;
+}
+
+void Recording::close() {
+  if (last_t_ns_ >= 0 && paths_sent_ns_ != last_t_ns_) writePaths(last_t_ns_);
+  mcap_.close();
+}
+
 void Recording::log(std::int64_t t_ns, int level, const std::string& message) {
   std::ostringstream out;
   JsonWriter j(out, false);
@@ -169,7 +180,6 @@ void Recording::write(const pipeline::FrameRecord& r, const std::vector<std::uin
     mcap_.write(pose_, t, out.str());
   }
   estimate_.push_back(r.T_w_b);
-  mcap_.write(path_, t, posesInFrame(r.t_ns, estimate_, kMaxPathPoses));
   if (truth_path_) {
     if (const io::TrajectorySample* g = nearest(truth_, r.t_ns)) {
       if (!truth_placed_) {
@@ -178,8 +188,9 @@ void Recording::write(const pipeline::FrameRecord& r, const std::vector<std::uin
       }
       truth_so_far_.push_back(T_est_gt_ * g->T_w_b);
     }
-    mcap_.write(truth_path_, t, posesInFrame(r.t_ns, truth_so_far_, kMaxPathPoses));
   }
+  last_t_ns_ = r.t_ns;
+  if (paths_sent_ns_ < 0 || r.t_ns - paths_sent_ns_ >= kPathPeriodNs) writePaths(r.t_ns);
   if (r.isKeyframe()) {
     keyframe_poses_.push_back(r.T_w_b);
     mcap_.write(keyframes_, t, posesInFrame(r.t_ns, keyframe_poses_, kMaxPathPoses));
