@@ -97,24 +97,40 @@ const test::RenderFixture& fixture() {
   return f;
 }
 
+/// Samples i (keyframe) and j of the fixture's path: the keyframe's pyramid
+/// and reference points, the current pyramid, and the true T_nr between them.
+struct FramePair {
+  vision::EdgePyramid ref_pyr, cur_pyr;
+  vision::KeyframeDepth depth;
+  SE3 truth;
+};
+FramePair framePair(std::size_t i, std::size_t j) {
+  const auto& fx = fixture();
+  const SE3 T_b_c = fx.rectifier().T_b_rect(0);
+  const StereoFrame ref = fx.frame(fx.path()[i].T_w_b, 0, i), cur = fx.frame(fx.path()[j].T_w_b, 1, j);
+  const vision::VisionOptions vo;
+  FramePair p;
+  p.ref_pyr = vision::buildEdgePyramid(ref.left, fx.rectifier().rectifiedCamera(), vo);
+  p.depth = vision::computeKeyframeDepth(p.ref_pyr, ref.right.get(), fx.rectifier().baseline(), vo);
+  p.cur_pyr = vision::buildEdgePyramid(cur.left, fx.rectifier().rectifiedCamera(), vo);
+  p.truth = (fx.path()[j].T_w_b * T_b_c).inverse() * (fx.path()[i].T_w_b * T_b_c);
+  return p;
+}
+
 TEST(EdgeAlignment, AtTheTruthReferenceEdgesMeetEdgesOfTheirOwnNormal) {
   // The normal check rests on this: at the true pose, the nearest edge of a
   // reference point is mostly its own edge, whose normal (with the gradient's
   // sign) the mapped reference normal matches; with the sign flipped, as for
   // the far side of a thin line, it mostly does not. Five frames apart in the
   // figure8 room, level 0.
-  const auto& fx = fixture();
-  const SE3 T_b_c = fx.rectifier().T_b_rect(0);
-  const vision::VisionOptions vo;
   const double min_cos = std::cos(AlignmentOptions{}.max_normal_angle_deg * kDegToRad);
   int tested = 0;
   for (std::size_t i = 500; i + 50 < 2600; i += 520) {
     const std::size_t j = i + 50;
-    const StereoFrame ref = fx.frame(fx.path()[i].T_w_b, 0, i), cur = fx.frame(fx.path()[j].T_w_b, 1, j);
-    const vision::EdgePyramid ref_pyr = vision::buildEdgePyramid(ref.left, fx.rectifier().rectifiedCamera(), vo);
-    const vision::KeyframeDepth depth = vision::computeKeyframeDepth(ref_pyr, ref.right.get(), fx.rectifier().baseline(), vo);
-    const vision::EdgePyramid cur_pyr = vision::buildEdgePyramid(cur.left, fx.rectifier().rectifiedCamera(), vo);
-    const SE3 truth = (fx.path()[j].T_w_b * T_b_c).inverse() * (fx.path()[i].T_w_b * T_b_c);
+    const FramePair pair = framePair(i, j);
+    const vision::KeyframeDepth& depth = pair.depth;
+    const vision::EdgePyramid& cur_pyr = pair.cur_pyr;
+    const SE3& truth = pair.truth;
     const vision::EdgeLevel& level = cur_pyr.levels[0];
     ASSERT_EQ(depth.normals[0].size(), depth.points[0].size());
     if (depth.points[0].size() < 2000) continue;  // a nearly blank view, as in worstErrorAlongPath
@@ -149,15 +165,11 @@ TEST(EdgeAlignment, TheSelfCheckRefusesAFitThatPinsOnlyARay) {
   // moving its points by extent·δz/Z pixels (8 px·δz/2 m here), and rotation
   // absorbs the rest; the whole view fixes the translation to millimetres.
   // The self check must tell the two apart by the translation's σ.
-  const auto& fx = fixture();
-  const std::size_t i = 1300, j = i + 10;
-  const SE3 T_b_c = fx.rectifier().T_b_rect(0);
-  const StereoFrame ref = fx.frame(fx.path()[i].T_w_b, 0, i), cur = fx.frame(fx.path()[j].T_w_b, 1, j);
-  const vision::VisionOptions vo;
-  const vision::EdgePyramid ref_pyr = vision::buildEdgePyramid(ref.left, fx.rectifier().rectifiedCamera(), vo);
-  const vision::KeyframeDepth depth = vision::computeKeyframeDepth(ref_pyr, ref.right.get(), fx.rectifier().baseline(), vo);
-  const vision::EdgePyramid cur_pyr = vision::buildEdgePyramid(cur.left, fx.rectifier().rectifiedCamera(), vo);
-  const SE3 truth = (fx.path()[j].T_w_b * T_b_c).inverse() * (fx.path()[i].T_w_b * T_b_c);
+  const FramePair pair = framePair(1300, 1310);
+  const vision::EdgePyramid& ref_pyr = pair.ref_pyr;
+  const vision::KeyframeDepth& depth = pair.depth;
+  const vision::EdgePyramid& cur_pyr = pair.cur_pyr;
+  const SE3& truth = pair.truth;
   const std::vector<Eigen::Vector3f>& all = depth.points[0];
   ASSERT_GE(all.size(), 1000u);
   // The patch: level-0 points within 8 px (in the keyframe's image) of the middle point.
@@ -192,18 +204,13 @@ TEST(EdgeAlignment, ReprojectedPointsAreInliersAtTheTruthAndNotFarFromIt) {
   // lie on edges (inliers); with the pose 20 cm to the side (~20 level-0 px
   // at the room's 2 m) fewer than half as many are (a point off its own edge
   // often lands near another in this textured room: 0.29 against 0.92 when
-  // measured); with every reference normal
-  // flipped, as for the far side of a thin line, the points near an edge
-  // fail the normal check (the test above: > 90 % of them).
-  const auto& fx = fixture();
-  const std::size_t i = 1300, j = i + 10;
-  const SE3 T_b_c = fx.rectifier().T_b_rect(0);
-  const StereoFrame ref = fx.frame(fx.path()[i].T_w_b, 0, i), cur = fx.frame(fx.path()[j].T_w_b, 1, j);
-  const vision::VisionOptions vo;
-  const vision::EdgePyramid ref_pyr = vision::buildEdgePyramid(ref.left, fx.rectifier().rectifiedCamera(), vo);
-  vision::KeyframeDepth depth = vision::computeKeyframeDepth(ref_pyr, ref.right.get(), fx.rectifier().baseline(), vo);
-  const vision::EdgePyramid cur_pyr = vision::buildEdgePyramid(cur.left, fx.rectifier().rectifiedCamera(), vo);
-  const SE3 truth = (fx.path()[j].T_w_b * T_b_c).inverse() * (fx.path()[i].T_w_b * T_b_c);
+  // measured); with every reference normal flipped, as for the far side of
+  // a thin line, the points near an edge fail the normal check (the test
+  // above: > 90 % of them).
+  FramePair pair = framePair(1300, 1310);
+  vision::KeyframeDepth& depth = pair.depth;
+  const vision::EdgePyramid& cur_pyr = pair.cur_pyr;
+  const SE3& truth = pair.truth;
   const AlignmentOptions ao;
   const auto fractions = [&](const SE3& T) {
     const std::vector<ReprojectedPoint> points = reprojectReferencePoints(depth, cur_pyr, T, ao);
