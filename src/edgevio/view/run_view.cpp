@@ -9,6 +9,7 @@
 #include "edgevio/common/json.h"
 #include "edgevio/common/table_reader.h"
 #include "edgevio/common/time.h"
+#include "edgevio/common/yaml_file.h"
 #include "edgevio/eval/batch.h"
 #include "edgevio/io/trajectory_io.h"
 #include "edgevio/pipeline/component_times.h"
@@ -39,8 +40,15 @@ std::string runViewJson(const std::string& run_dir, const eval::EvalOptions& opt
   const fs::path frames_csv = run / "frames.csv";
   if (!fs::exists(frames_csv)) throw InputError(run_dir, 0, "not a run folder: no frames.csv (write one with edgevio run --out)");
   const fs::path summary_json = run / "summary.json";
-  const std::string summary = fs::exists(summary_json) ? readBytes(summary_json) : "{}";
-  if (!fs::exists(summary_json)) notes->push_back("no summary.json: the run did not finish");
+  std::string summary = "{}";
+  if (fs::exists(summary_json)) {
+    // Goes into the page as it is: a file cut short (a run killed while
+    // writing it) is an error naming its line here, not a blank page.
+    loadYamlFile(summary_json.string());
+    summary = readBytes(summary_json);
+  } else {
+    notes->push_back("no summary.json: the run did not finish");
+  }
 
   std::ostringstream out;
   JsonWriter j(out, false);
