@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages edgevio builds against. Idempotent: apt-get runs
 # only when a package is missing. Non-interactive; run as root (or with sudo).
-# Usage: scripts/setup.sh [--test]
+# Usage: scripts/setup.sh [--test | --fuzz]
 set -euo pipefail
 
 packages=(
@@ -17,6 +17,8 @@ command -v npm >/dev/null 2>&1 || packages+=(nodejs npm)
 # independent writer and reader the bag tests check edgevio against, and
 # Debian's chromium for the viewer's browser tests.
 [ "${1:-}" = "--test" ] && packages+=(python3-rosbag python3-sensor-msgs python3-nav-msgs chromium)
+# --fuzz: clang and its libFuzzer runtime (scripts/fuzz.sh).
+[ "${1:-}" = "--fuzz" ] && packages+=(clang libclang-rt-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do

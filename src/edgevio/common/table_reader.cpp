@@ -3,6 +3,7 @@
 #include <limits>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 
@@ -105,10 +106,13 @@ double TableReader::numberOrNan(std::size_t i) const {
 std::int64_t TableReader::integer(std::size_t i) const {
   if (i >= fields_.size()) fail("missing column " + std::to_string(i + 1));
   const std::string& s = fields_[i];
-  bool ok = !s.empty() && s.size() <= 19;
+  std::int64_t v = 0;
+  bool ok = !s.empty();
   for (char c : s) ok = ok && c >= '0' && c <= '9';
+  // from_chars refuses what does not fit in 64 bits (over 292 years in ns).
+  ok = ok && std::from_chars(s.data(), s.data() + s.size(), v).ec == std::errc{};
   if (!ok) fail("column " + std::to_string(i + 1) + ": expected a non-negative integer timestamp, found " + quoted(s));
-  return std::stoll(s);
+  return v;
 }
 
 std::int64_t TableReader::secondsAsNanoseconds(std::size_t i) const {

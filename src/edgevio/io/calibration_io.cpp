@@ -1,5 +1,6 @@
 #include "edgevio/io/calibration_io.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -23,6 +24,9 @@ void readIntrinsics(const YAML::Node& node, const std::string& path, const char*
                      "camera_model '" + model + "' is not supported (expected 'pinhole')");
   const std::vector<double> res = yamlDoubles(node, "resolution", path, 2);
   const std::vector<double> k = yamlDoubles(node, "intrinsics", path, 4);
+  for (double pixels : res)
+    if (pixels < 1 || pixels > 65535 || pixels != std::floor(pixels))
+      throw InputError(path, yamlLine(node["resolution"]), "resolution: [width, height] in whole pixels, 1 to 65535 each");
   m->width = static_cast<int>(res[0]);
   m->height = static_cast<int>(res[1]);
   m->fx = k[0];

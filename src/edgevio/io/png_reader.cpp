@@ -45,10 +45,13 @@ cv::Mat decodePngGray8(const std::vector<std::uint8_t>& file) {
   static constexpr std::uint8_t kSignature[8] = {137, 80, 78, 71, 13, 10, 26, 10};
   if (file.size() < 8 || !std::equal(kSignature, kSignature + 8, file.begin())) return {};
 
-  // Chunks: length, type, data, CRC-32 of type and data. Every CRC is checked.
+  // Chunks: length, type, data, CRC-32 of type and data. Every CRC is
+  // checked, and the order libpng insists on (RFC 2083 §3.2, §4.3): IHDR
+  // first and once, the IDAT chunks consecutive; any other critical chunk
+  // (a name starting in upper case) is for the general decoder to judge.
   int width = 0, height = 0;
   std::vector<std::uint8_t> compressed;
-  bool header = false, end = false;
+  bool header = false, end = false, idat_ended = false;
   for (std::size_t at = 8; at + 12 <= file.size() && !end;) {
     const std::uint32_t length = bigEndian32(&file[at]);
     if (length > file.size() - at - 12) return {};
@@ -56,6 +59,8 @@ cv::Mat decodePngGray8(const std::vector<std::uint8_t>& file) {
     const std::uint8_t* data = type + 4;
     if (libdeflate_crc32(0, type, length + 4) != bigEndian32(data + length)) return {};
     const std::string name(reinterpret_cast<const char*>(type), 4);
+    if ((at == 8) != (name == "IHDR")) return {};
+    if (!compressed.empty() && name != "IDAT") idat_ended = true;
     if (name == "IHDR") {
       // Only 8-bit greyscale (colour type 0), standard compression and filters, no interlacing.
       if (length != 13 || data[8] != 8 || data[9] != 0 || data[10] != 0 || data[11] != 0 || data[12] != 0) return {};
@@ -64,10 +69,12 @@ cv::Mat decodePngGray8(const std::vector<std::uint8_t>& file) {
       if (width <= 0 || height <= 0 || width > 1 << 15 || height > 1 << 15) return {};
       header = true;
     } else if (name == "IDAT") {
-      if (!header) return {};
+      if (idat_ended) return {};
       compressed.insert(compressed.end(), data, data + length);
     } else if (name == "IEND") {
       end = true;
+    } else if (name[0] >= 'A' && name[0] <= 'Z') {
+      return {};
     }
     at += 12 + length;
   }

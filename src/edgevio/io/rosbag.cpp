@@ -115,6 +115,15 @@ RosbagReader::RosbagReader(const std::string& path) : path_(path), in_(path, std
   } else {
     readIndex(u64(index_pos), u32(chunk_count));
   }
+  // A damaged index can name a connection the bag never describes: such a
+  // message has no topic or type to be read as.
+  const auto undescribed = std::remove_if(index_.begin(), index_.end(),
+                                          [this](const BagMessageRef& ref) { return connection(ref.connection) == nullptr; });
+  if (undescribed != index_.end()) {
+    warnings_.push_back(path + ": " + std::to_string(index_.end() - undescribed) +
+                        " messages of connections the bag does not describe were left out (a damaged index?)");
+    index_.erase(undescribed, index_.end());
+  }
   std::stable_sort(index_.begin(), index_.end(),
                    [](const BagMessageRef& a, const BagMessageRef& b) { return a.record_time_ns < b.record_time_ns; });
 }

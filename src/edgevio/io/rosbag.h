@@ -56,7 +56,8 @@ class RosbagReader {
   const std::vector<BagConnection>& connections() const { return connections_; }
   /// The connection of an id (null when there is none).
   const BagConnection* connection(std::uint32_t id) const;
-  /// Every message in file order (each chunk once): the cheapest order to read many of them.
+  /// Every message in file order (each chunk once): the cheapest order to read
+  /// many of them. Each message's connection is one of connections().
   std::vector<BagMessageRef> messagesInFileOrder() const;
   /// Warnings from opening (a missing index, a truncated end).
   const std::vector<std::string>& warnings() const { return warnings_; }
