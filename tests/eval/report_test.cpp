@@ -65,7 +65,8 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
   dir.write("seqA/edge+imu/summary.json",
             "{\"mode\": \"edge+imu\", \"sequence\": \"seqA\", \"failed\": false, \"groundtruth\": \"../../gt.csv\", "
             "\"realtime_factor\": 7.5, \"latency_ms\": {\"p50\": 12.5, \"p99\": 40.25, \"max\": 51}, \"lost_intervals\": "
-            "[{\"start_s\": 2, \"end_s\": 2.5, \"reason\": \"a\"}, {\"start_s\": 10, \"end_s\": 11, \"reason\": \"b\"}]}");
+            "[{\"start_s\": 2, \"end_s\": 2.5, \"reason\": \"a\"}, {\"start_s\": 10, \"end_s\": 11, \"reason\": \"b\"}], "
+            "\"frames\": 397, \"frames_to_process\": 400, \"unaccounted_frames\": 2}");
   // failed run
   dir.write("seqA/edge-only/summary.json", "{\"mode\": \"edge-only\", \"sequence\": \"seqA\", \"failed\": true}");
   // run without ground truth
@@ -85,13 +86,18 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
   ASSERT_EQ(cli::evalResults(dir.path(), EvalOptions{}, out, err), cli::kExitOk) << err.str();
   const std::string md = test::readFile(dir.file("report.md")), csv = test::readFile(dir.file("report.csv"));
   EXPECT_NE(md.find("4 runs, 3 failed"), std::string::npos) << md;
-  EXPECT_NE(md.find("| seqA | edge+imu | lost 1.5 s; 3 segments, ATE <= "), std::string::npos) << md;
+  // Time to recover: the longest loss; frames lost without a word come first.
+  EXPECT_NE(md.find("| seqA | edge+imu | **2 frames unaccounted**; lost 1.5 s (longest 1.0 s); 3 segments, ATE <= "),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find(" | 397/400 | 400 | "), std::string::npos) << md;
   EXPECT_NE(md.find("| seqA | edge-only | **FAILED**"), std::string::npos) << md;
   EXPECT_NE(md.find("no ground truth"), std::string::npos) << md;
   EXPECT_NE(md.find("no timestamp overlap"), std::string::npos) << md;
   EXPECT_NE(csv.find("seqA,edge+imu,seqA/edge+imu,ok,,400,se3,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",7.50,0,,12.50,40.25,2,1.500,3,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",0,,,,0,0.000,0,\n"), std::string::npos) << csv;  // a summary without them: empty fields, nothing lost
+  EXPECT_NE(csv.find(",1.000,397,400,2\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",0,,,,0,0.000,0,,0.000,,,\n"), std::string::npos) << csv;  // a summary without them: empty fields, nothing lost
 }
 
 TEST(Report, SegmentsBetweenLossesAreEvaluatedAlone) {

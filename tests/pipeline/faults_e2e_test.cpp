@@ -58,6 +58,9 @@ TEST_P(Faults, EveryFrameIsAccountedForAndTheBlackoutIsALostInterval) {
   EXPECT_EQ(d.unpairedFrames(0), 1u);  // drop_right
   EXPECT_EQ(d.unpairedFrames(1), 1u);  // drop_left
   EXPECT_EQ(s.frames, d.frameCount());
+  EXPECT_EQ(s.stereo_pairs, d.frameCount());
+  EXPECT_EQ(s.frames_to_process, d.frameCount());
+  EXPECT_EQ(s.unaccountedFrames(), 0);
   TableReader frames(out.file("frames.csv"), TableReader::Separator::kComma, TableReader::Header::kColumnNames);
   std::size_t rows = 0, lost_rows = 0;
   while (frames.next()) {
@@ -78,7 +81,7 @@ TEST_P(Faults, EveryFrameIsAccountedForAndTheBlackoutIsALostInterval) {
   EXPECT_EQ(lost_rows, 4u);
   // The IMU dropout: one restart, when the IMU is back.
   EXPECT_EQ(s.estimator_resets, mode.imu ? 1u : 0u);
-  test::expectContainsAll(test::readFile(out.file("summary.json")), {"\"lost_intervals\": [", "estimate lost", "tracking again"});
+  test::expectContainsAll(test::readFile(out.file("summary.json")), {"\"lost_intervals\": [", "estimate lost", "tracking again", "\"unaccounted_frames\": 0,"});
 }
 
 INSTANTIATE_TEST_SUITE_P(AllModes, Faults, ::testing::Values(kEdgeOnly, kEdgeLoop, kEdgeImu, kFull),

@@ -105,6 +105,14 @@ TEST(RunSummary, CountsTheRecords) {
   EXPECT_EQ(s.self_check_failures, 1u);
   s.finish();
   EXPECT_FALSE(s.failed);
+  // 4 rows, 2 frames dropped in real time, 1 that did not decode: of 8 to
+  // process, 1 is lost without a word; of 6, one row has no frame.
+  s.dropped_frames = 2;
+  s.unreadable_frames = 1;
+  s.frames_to_process = 8;
+  EXPECT_EQ(s.unaccountedFrames(), 1);
+  s.frames_to_process = 6;
+  EXPECT_EQ(s.unaccountedFrames(), -1);
 }
 
 TEST(RunSummary, LostIntervalsFollowTheFramesStatus) {

@@ -71,7 +71,11 @@ RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOp
         lost_spans.emplace_back(number(l["start_s"], 0.0), number(l["end_s"], 0.0));
         ++r.lost_intervals;
         r.lost_s += lost_spans.back().second - lost_spans.back().first;
+        r.longest_loss_s = std::max(r.longest_loss_s, lost_spans.back().second - lost_spans.back().first);
       }
+    r.frames = static_cast<long long>(number(summary["frames"], -1));
+    r.frames_to_process = static_cast<long long>(number(summary["frames_to_process"], -1));
+    if (summary["unaccounted_frames"]) r.unaccounted_frames = static_cast<long long>(number(summary["unaccounted_frames"], 0));
     if (scalarOr(summary, "failed", "false") == "true") {
       r.failure = "run reported failure (summary.json: failed = true)";
       const std::string why = scalarOr(summary, "failure", "");
@@ -168,10 +172,14 @@ double worstSegmentAte(const RunEvaluation& r) {
   return r.segment_ate_m.empty() ? kNaN : *std::max_element(r.segment_ate_m.begin(), r.segment_ate_m.end());
 }
 
-/// "ok", or "lost 1.5 s; 3 segments, ATE <= 0.012 m" for a run with losses.
+/// "ok", or "lost 1.5 s (longest 0.6 s); 3 segments, ATE <= 0.012 m" for a
+/// run with losses; frames lost without a word come first.
 std::string statusText(const RunEvaluation& r) {
-  if (r.lost_intervals == 0) return "ok";
-  std::string s = "lost " + num(r.lost_s, 1) + " s";
+  const std::string unaccounted =
+      r.unaccounted_frames.value_or(0) != 0 ? "**" + std::to_string(*r.unaccounted_frames) + " frames unaccounted**" : std::string();
+  if (r.lost_intervals == 0) return unaccounted.empty() ? "ok" : unaccounted;
+  std::string s = (unaccounted.empty() ? "" : unaccounted + "; ") + "lost " + num(r.lost_s, 1) + " s";
+  if (r.lost_intervals > 1) s += " (longest " + num(r.longest_loss_s, 1) + " s)";
   if (!r.segment_ate_m.empty())
     s += "; " + std::to_string(r.segment_ate_m.size()) + (r.segment_ate_m.size() == 1 ? " segment" : " segments") + ", ATE <= " +
          num(worstSegmentAte(r), 3) + " m";
@@ -192,20 +200,22 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
   } else {
     for (std::size_t i = 0; i < options.are_segments_m.size(); ++i) out << (i ? ", " : "") << options.are_segments_m[i] << " m";
   }
-  out << ".\n\n| sequence | mode | status | matched | ATE RMSE [m] | ARE-rot [deg/m] | ARE-trans [m/m] |";
+  out << ".\n\n| sequence | mode | status | frames | matched | ATE RMSE [m] | ARE-rot [deg/m] | ARE-trans [m/m] |";
   for (double d : options.rpe_deltas_m) out << " RPE " << d << " m [m] |";
-  out << " length [m] | RT factor | peak memory [MB] |\n|---|---|---|---:|---:|---:|---:|";
+  out << " length [m] | RT factor | peak memory [MB] |\n|---|---|---|---:|---:|---:|---:|---:|";
   for (std::size_t i = 0; i < options.rpe_deltas_m.size(); ++i) out << "---:|";
   out << "---:|---:|---:|\n";
   for (const auto& r : runs) {
     out << "| " << r.sequence << " | " << r.mode << (r.skip > 0 ? ", skip " + std::to_string(r.skip) : "") << " | ";
+    const std::string frames = r.frames < 0 ? "-" : r.frames_to_process < 0 ? std::to_string(r.frames)
+                                                     : std::to_string(r.frames) + "/" + std::to_string(r.frames_to_process);
     if (!r.ok) {
-      out << "**FAILED**: " << r.failure << " | - | - | - | - |";
+      out << "**FAILED**: " << r.failure << " | " << frames << " | - | - | - | - |";
       for (std::size_t i = 0; i < options.rpe_deltas_m.size(); ++i) out << " - |";
       out << " - | " << num(r.realtime_factor, 1) << " | " << num(r.peak_rss_mb, 0) << " |\n";
       continue;
     }
-    out << statusText(r) << " | " << r.result.matched << " | " << num(r.result.ate_rmse_m, 4) << " | "
+    out << statusText(r) << " | " << frames << " | " << r.result.matched << " | " << num(r.result.ate_rmse_m, 4) << " | "
         << num(r.result.are_rot_deg_per_m, 5) << " | " << num(r.result.are_trans_m_per_m, 5) << " |";
     for (const auto& e : r.result.rpe) out << " " << num(e.trans_rmse_m, 4) << " |";
     out << " " << num(r.result.length_m, 1) << " | " << num(r.realtime_factor, 1) << " | " << num(r.peak_rss_mb, 0) << " |\n";
@@ -215,7 +225,8 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
 void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
   out << "sequence,mode,folder,status,failure,matched,align,ate_rmse_m,ate_mean_m,ate_median_m,ate_max_m,"
          "are_rot_deg_per_m,are_trans_m_per_m,rpe_deltas_m,rpe_trans_rmse_m,rpe_rot_rmse_deg,length_m,duration_s,"
-         "realtime_factor,skip,peak_rss_mb,latency_p50_ms,latency_p99_ms,lost_intervals,lost_s,segments,segment_ate_max_m\n";
+         "realtime_factor,skip,peak_rss_mb,latency_p50_ms,latency_p99_ms,lost_intervals,lost_s,segments,segment_ate_max_m,"
+         "longest_loss_s,frames,frames_to_process,unaccounted_frames\n";
   for (const auto& r : runs) {
     out << csvField(r.sequence) << "," << csvField(r.mode) << "," << csvField(r.folder) << ","
         << (r.ok ? "ok" : "failed") << "," << csvField(r.failure) << ",";
@@ -240,7 +251,10 @@ void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
         << (std::isfinite(r.latency_p50_ms) ? num(r.latency_p50_ms, 2) : "") << ","
         << (std::isfinite(r.latency_p99_ms) ? num(r.latency_p99_ms, 2) : "") << "," << r.lost_intervals << "," << num(r.lost_s, 3)
         << "," << r.segment_ate_m.size() << ","
-        << (r.segment_ate_m.empty() ? "" : num(worstSegmentAte(r), 6)) << "\n";
+        << (r.segment_ate_m.empty() ? "" : num(worstSegmentAte(r), 6)) << "," << num(r.longest_loss_s, 3) << ","
+        << (r.frames < 0 ? "" : std::to_string(r.frames)) << ","
+        << (r.frames_to_process < 0 ? "" : std::to_string(r.frames_to_process)) << ","
+        << (r.unaccounted_frames ? std::to_string(*r.unaccounted_frames) : "") << "\n";
   }
 }
 

@@ -12,6 +12,7 @@
 // "failed": true, whose trajectory is missing, or that cannot be evaluated is a
 // failure row with the reason: never dropped.
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +34,11 @@ struct RunEvaluation {
   double latency_p50_ms = 0.0, latency_p99_ms = 0.0;  ///< summary.json "latency_ms" p50 and p99, else NaN
   int lost_intervals = 0;  ///< summary.json "lost_intervals": how many ...
   double lost_s = 0.0;     ///< ... and their total length [s]
+  double longest_loss_s = 0.0;  ///< the longest of them: the time to recover [s]
+  /// summary.json "frames" (rows of frames.csv) of "frames_to_process" (-1
+  /// when absent), and "unaccounted_frames" (frames lost without a word).
+  long long frames = -1, frames_to_process = -1;
+  std::optional<long long> unaccounted_frames;
   /// With lost intervals: the ATE RMSE of each segment between them, each
   /// aligned alone (segments shorter than kMinSegmentPoses are left out).
   std::vector<double> segment_ate_m;

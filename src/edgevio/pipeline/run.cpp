@@ -47,6 +47,7 @@ RunSummary startSummary(const RunRequest& req, const io::Sequence& sequence) {
   s.skip = req.skip;
   s.realtime = req.realtime;
   s.duration_s = toSeconds(sequence.frameTime(sequence.frameCount() - 1) - sequence.frameTime(0));
+  s.stereo_pairs = sequence.frameCount();
   return s;
 }
 
@@ -73,10 +74,14 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
                     req.picture_stride > 0);
 
   const std::vector<std::size_t> frames = framesToRun(*sequence, req.skip);
+  s.frames_to_process = frames.size();
   std::size_t done = 0;
   const PipelineResult p = runThreaded(*sequence, frames, rect, config.vision, req.realtime, [&](PipelineFrame item) {
     ++done;
-    if (!item.readable) return;
+    if (!item.readable) {
+      ++s.unreadable_frames;
+      return;
+    }
     const auto t_start = Clock::now();
     FrameRecord r = odometry.process(std::move(item.frame));
     const auto posed = Clock::now();

@@ -63,6 +63,10 @@ double RunSummary::lostSeconds() const {
   return s;
 }
 
+long long RunSummary::unaccountedFrames() const {
+  return static_cast<long long>(frames_to_process) - static_cast<long long>(frames + dropped_frames + unreadable_frames);
+}
+
 std::string RunSummary::lossText() const {
   if (lost_intervals.empty()) return "";
   char b[96];
@@ -115,6 +119,12 @@ const std::vector<SummaryField>& summaryFields() {
       {"skipped_unreadable_frames", "images that were missing, did not decode, or were out of time order", member<&S::skipped_unreadable>},
       {"realtime", "true: frames were released at their timestamps (--realtime)", member<&S::realtime>},
       {"dropped_frames", "real time: frames dropped because the pipeline was behind", member<&S::dropped_frames>},
+      {"stereo_pairs", "the sequence's stereo pairs (left and right image of one time)", member<&S::stereo_pairs>},
+      {"frames_to_process", "the stereo pairs --skip keeps", member<&S::frames_to_process>},
+      {"unreadable_frames", "frames to process whose left image did not decode: no row", member<&S::unreadable_frames>},
+      {"unaccounted_frames",
+       "frames_to_process - frames - dropped_frames - unreadable_frames: frames lost without a word (negative: rows without a frame), 0 in a sound run",
+       [](J& j, const S& s) { j.value(s.unaccountedFrames()); }},
       {"static_initialization", "true: the IMU was still at the start, and gave gravity and the gyroscope bias",
        member<&S::static_initialization>},
       {"failed", "true: the run produced no estimate (no frame processed, or none tracked); losses on the way are lost_intervals",

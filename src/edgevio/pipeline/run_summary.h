@@ -30,6 +30,9 @@ struct RunSummary {
   std::size_t back_links = 0;              ///< keyframe back links that entered the window
   std::size_t skipped_unreadable = 0;      ///< frames whose image did not decode or was missing
   std::size_t dropped_frames = 0;          ///< real-time mode: frames dropped because the pipeline was behind
+  std::size_t stereo_pairs = 0;            ///< the sequence's stereo pairs
+  std::size_t frames_to_process = 0;       ///< of those, the frames --skip keeps
+  std::size_t unreadable_frames = 0;       ///< frames to process whose left image did not decode (no row)
   std::vector<std::string> events;         ///< restarts, IMU gaps, unreadable images: "t = … s: what"
   std::vector<std::string> warnings;       ///< the dataset's
   std::vector<LostInterval> lost_intervals;
@@ -42,6 +45,9 @@ struct RunSummary {
 
   /// The total length of the lost intervals [s].
   double lostSeconds() const;
+  /// Frames to process that neither have a row nor were dropped or unreadable
+  /// (negative: more rows than frames): 0 unless the pipeline lost or invented frames.
+  long long unaccountedFrames() const;
   /// "lost 1.20 s in 2 interval(s) (…)", or "" when nothing was lost.
   std::string lossText() const;
   /// Nearest-rank percentile `p` (0 < p <= 100) of the frames' latencies; 0 without frames.
