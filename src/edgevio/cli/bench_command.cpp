@@ -98,7 +98,8 @@ std::string renderCommand(const YAML::Node& s, const std::string& matrix_path, c
   if (const YAML::Node faults = s["faults"]) {
     if (!faults.IsSequence()) throw InputError(matrix_path, yamlLine(faults), "faults: a list of simulate --fault specs");
     for (const auto& f : faults) {
-      const std::string spec = f.as<std::string>();
+      if (!f.IsScalar()) throw InputError(matrix_path, yamlLine(f), "faults: each a simulate --fault spec such as black:at=5,for=0.5");
+      const std::string spec = f.Scalar();
       try {
         sim::parseFault(spec);
       } catch (const InputError& e) {
@@ -163,7 +164,7 @@ Matrix readMatrix(const std::string& matrix_path, const std::string& out, const 
   if (m["modes"]) {
     matrix.modes.clear();
     for (const auto& n : m["modes"]) {
-      const std::string mode = n.as<std::string>();
+      const std::string mode = n.IsScalar() ? n.Scalar() : std::string();
       if (!pipeline::parseMode(mode))
         throw InputError(matrix_path, yamlLine(n), "unknown mode '" + mode + "': use " + pipeline::kModeNames);
       matrix.modes.push_back(mode);

@@ -22,7 +22,9 @@ const Fields<Options>& fieldsOf(const Options&) {
 void rejectUnknown(const YAML::Node& map, const std::set<std::string>& known, const std::string& path,
                    const std::string& what, const std::string& prefix) {
   for (const auto& kv : map) {
-    const std::string key = kv.first.as<std::string>();
+    if (!kv.first.IsScalar())
+      throw InputError(path, yamlLine(kv.first), "a " + what + " must be a plain name, not a list or a map ('? ...' in YAML)");
+    const std::string key = kv.first.Scalar();
     if (known.count(key)) continue;
     std::string valid;
     for (const auto& k : known) valid += (valid.empty() ? "" : ", ") + k;
