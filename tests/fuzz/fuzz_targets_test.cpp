@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <random>
+#include <ostream>
 #include <string>
 
 #include "common/test_support.h"
@@ -71,6 +72,13 @@ std::string hex(const Bytes& b) {
 }
 
 class FuzzTargets : public ::testing::TestWithParam<FuzzTarget> {};
+
+}  // namespace
+
+// The target's name in test listings (not its bytes).
+void PrintTo(const FuzzTarget& t, std::ostream* os) { *os << t.name; }
+
+namespace {
 
 TEST_P(FuzzTargets, SeedsAreReadWithoutError) {
   const FuzzTarget& t = GetParam();
