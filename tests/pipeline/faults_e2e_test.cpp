@@ -84,6 +84,35 @@ TEST_P(Faults, EveryFrameIsAccountedForAndTheBlackoutIsALostInterval) {
   test::expectContainsAll(test::readFile(out.file("summary.json")), {"\"lost_intervals\": [", "estimate lost", "tracking again", "\"unaccounted_frames\": 0,"});
 }
 
+TEST(FrozenImages, AreALossWhereTheGyroscopeContradictsTheVisualEstimate) {
+  // 4 s of the aggressive scenario whose images freeze for 0.5 s from 2 s.
+  // Edge-only aligns the repeated images to its keyframe and rotates 2-3 deg
+  // per frame less than the gyroscope says (the self check passes on some):
+  // lost from the third contradiction's first, until the window of 10
+  // frames clears after the images move again. The full system follows the
+  // gyroscope through the frozen frames: nothing is lost.
+  TempDir dir;
+  sim::SimRequest req = test::scenarioRequest(dir.file("data"), "aggressive", 0.0, 4.0, 2);
+  req.faults = {sim::parseFault("frozen:at=2,for=0.5")};
+  sim::simulate(req, sim::SimOptions{});
+  for (const Mode mode : {kEdgeOnly, kFull}) {
+    TempDir out;
+    const RunSummary s = run(RunRequest(req.out_dir, out.path(), mode), Config{});
+    EXPECT_EQ(s.unaccountedFrames(), 0);
+    if (mode.imu) {
+      EXPECT_TRUE(s.lost_intervals.empty()) << s.lossText();
+      continue;
+    }
+    ASSERT_EQ(s.lost_intervals.size(), 1u) << s.lossText();
+    const LostInterval& l = s.lost_intervals[0];
+    EXPECT_GE(l.start_s, 2.0);
+    EXPECT_LT(l.start_s, 2.5);
+    EXPECT_GE(l.end_s, 2.5);
+    EXPECT_LE(l.end_s, 3.0);  // at most 10 frames after the images move
+    EXPECT_NE(l.reason.find("gyroscope contradicts"), std::string::npos) << l.reason;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(AllModes, Faults, ::testing::Values(kEdgeOnly, kEdgeLoop, kEdgeImu, kFull),
                          [](const ::testing::TestParamInfo<Mode>& p) {
                            std::string n = modeName(p.param);

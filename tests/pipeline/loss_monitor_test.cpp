@@ -17,7 +17,7 @@ FrameRecord frame(int k, bool passed) {
 }
 
 TEST(LossMonitor, ConsecutiveFailuresLoseTheEstimateFromTheFirstUntilTrackedAgain) {
-  LossMonitor m(3);
+  LossMonitor m(3, 2.0, 3);
   std::vector<FrameRecord> r;
   // Frame 0 is a first frame; 2-3 fail (two: not lost); 5-9 fail; 10 tracks again.
   for (int k = 0; k <= 11; ++k) r.push_back(frame(k, !(k == 2 || k == 3 || (k >= 5 && k <= 9))));
@@ -31,8 +31,36 @@ TEST(LossMonitor, ConsecutiveFailuresLoseTheEstimateFromTheFirstUntilTrackedAgai
   EXPECT_EQ(r[7].lost_reason, "3 consecutive self-check failures");
 }
 
+TEST(LossMonitor, ThreeFramesTheGyroscopeContradictsAmongTenAreALoss) {
+  // Frozen images: frames 3, 5 and 6 align (self check passed) but rotate
+  // 2.5 deg less than the gyroscope; frame 4 disagrees by 1.9 deg (under
+  // the threshold). Lost from frame 3 at the third contradiction (6) until a
+  // tracked frame finds fewer than 3 in its window of 10: frame 13, when
+  // frame 3 has left it.
+  const auto run = [](double threshold, int contradictions, double nan_or_disagreement) {
+    LossMonitor m(10, threshold, contradictions);
+    std::vector<FrameRecord> r;
+    for (int k = 0; k <= 15; ++k) {
+      r.push_back(frame(k, true));
+      r.back().gyro_disagreement_deg = k == 3 || k == 5 || k == 6 ? nan_or_disagreement : (k == 4 ? 1.9 : 0.2);
+    }
+    for (FrameRecord& x : r) m.update(&x);
+    return r;
+  };
+  const std::vector<FrameRecord> r = run(2.0, 3, 2.5);
+  for (int k = 0; k <= 15; ++k) {
+    EXPECT_EQ(r[k].status == TrackingStatus::kLost, k >= 6 && k <= 12) << k;
+    EXPECT_EQ(r[k].lost_since_ns >= 0, k == 6) << k;
+  }
+  EXPECT_EQ(r[6].lost_since_ns, r[3].t_ns);
+  EXPECT_EQ(r[6].lost_reason, "the gyroscope contradicts 3 of the last 6 frames' rotation by over 2.0 deg");
+  // Off, or no gyroscope reading (NaN): nothing is lost.
+  for (const auto& none : {run(2.0, 0, 2.5), run(2.0, 3, std::numeric_limits<double>::quiet_NaN())})
+    for (const FrameRecord& x : none) EXPECT_EQ(x.status, TrackingStatus::kOk) << x.t_ns;
+}
+
 TEST(LossMonitor, ANonFinitePoseIsLostAtOnce) {
-  LossMonitor m(10);
+  LossMonitor m(10, 2.0, 3);
   FrameRecord ok = frame(1, true), bad = frame(2, true), again = frame(3, true);
   bad.T_w_b = geometry::SE3(geometry::SO3(), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
   m.update(&ok);

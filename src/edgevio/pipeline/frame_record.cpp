@@ -44,6 +44,10 @@ constexpr FrameColumn kColumns[] = {
        [](const R& r) { return real(r.alignment.mean_distance_px); }, 4},
       {"translation_sigma_m", "m", "std. dev. of the alignment's translation along its weakest direction, for 1 px of edge noise",
        [](const R& r) { return real(r.alignment.translation_sigma_m); }, 4, true},
+      {"gyro_disagreement_deg", "deg",
+       "the estimate's rotation since the previous frame against the gyroscope's over that time (with the newest gyroscope "
+       "bias estimate, else the static start's)",
+       [](const R& r) { return real(r.gyro_disagreement_deg); }, 3},
       {"reference_timestamp_ns", "ns", "the keyframe's time: the tracking link's reference (-1: none)",
        [](const R& r) { return integer(r.reference_t_ns); }},
       {"link_tx", "m", "the tracking link as the body's motion T_bn_br (= T_w_bn^-1 T_w_br of a ground truth): translation x",

@@ -6,6 +6,7 @@
 // value from the record; frames.csv's header, its rows and the column
 // reference (docs/outputs.md) all come from that table.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -74,6 +75,9 @@ struct FrameRecord {
 
   // The result.
   TrackingStatus status = TrackingStatus::kOk;
+  /// The angle between the estimate's rotation since the previous frame and
+  /// the gyroscope's over that time [deg] (NaN: no IMU reading, a first frame).
+  double gyro_disagreement_deg = std::numeric_limits<double>::quiet_NaN();
   std::int64_t lost_since_ns = -1;  ///< where a loss this frame declared began (its first symptom); -1: none began here
   std::string lost_reason;          ///< why, when a loss began here
   geometry::SE3 T_w_b;                ///< the causal pose estimate of the frame

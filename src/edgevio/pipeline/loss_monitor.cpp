@@ -1,29 +1,50 @@
 #include "edgevio/pipeline/loss_monitor.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <string>
 
 namespace edgevio::pipeline {
 
 void LossMonitor::update(FrameRecord* r) {
   const bool failed = r->aligned && !r->selfCheckPassed();
+  // (without a gyroscope reading the disagreement is NaN and compares false)
+  const bool contradicted = r->aligned && gyro_contradictions_ > 0 && gyro_disagreement_deg_ > 0 &&
+                            r->gyro_disagreement_deg > gyro_disagreement_deg_;
+  if (r->aligned) {
+    recent_.emplace_back(r->t_ns, contradicted);
+    if (recent_.size() > static_cast<std::size_t>(lost_after_)) recent_.pop_front();
+  }
+  const int contradictions = static_cast<int>(std::count_if(recent_.begin(), recent_.end(), [](const auto& f) { return f.second; }));
   if (failed) {
     if (failures_ == 0) first_failure_ns_ = r->t_ns;
     ++failures_;
   } else if (r->aligned) {
     failures_ = 0;
-    lost_ = false;  // tracked again
+    // Tracked again; a loss the gyroscope declared needs its window to clear too.
+    if (lost_ != Cause::kNone && !contradicted && (lost_ != Cause::kGyroscope || contradictions < gyro_contradictions_)) {
+      lost_ = Cause::kNone;
+      tracked_again_ns_ = r->t_ns;
+    }
   }
-  const auto begin = [&](std::int64_t since, std::string why) {
-    lost_ = true;
+  const auto begin = [&](Cause cause, std::int64_t since, std::string why) {
+    lost_ = cause;
     r->lost_since_ns = since;
     r->lost_reason = std::move(why);
   };
   if (!r->T_w_b.translation().allFinite() || !r->T_w_b.so3().matrix().allFinite()) {
-    if (!lost_) begin(r->t_ns, "non-finite pose");
-  } else if (failed && failures_ >= lost_after_ && !lost_) {
-    begin(first_failure_ns_, std::to_string(failures_) + " consecutive self-check failures");
+    if (lost_ == Cause::kNone) begin(Cause::kFailures, r->t_ns, "non-finite pose");
+  } else if (lost_ == Cause::kNone && failed && failures_ >= lost_after_) {
+    begin(Cause::kFailures, first_failure_ns_, std::to_string(failures_) + " consecutive self-check failures");
+  } else if (lost_ == Cause::kNone && contradicted && contradictions >= gyro_contradictions_) {
+    const auto first = std::find_if(recent_.begin(), recent_.end(),
+                                    [this](const auto& f) { return f.second && f.first > tracked_again_ns_; });
+    char why[160];
+    std::snprintf(why, sizeof why, "the gyroscope contradicts %d of the last %zu frames' rotation by over %.1f deg", contradictions,
+                  recent_.size(), gyro_disagreement_deg_);
+    begin(Cause::kGyroscope, first->first, why);
   }
-  r->status = lost_ ? TrackingStatus::kLost : TrackingStatus::kOk;
+  r->status = lost_ != Cause::kNone ? TrackingStatus::kLost : TrackingStatus::kOk;
 }
 
 }  // namespace edgevio::pipeline

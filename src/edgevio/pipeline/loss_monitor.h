@@ -4,11 +4,19 @@
 // verdict: it begins at its first symptom and ends at the first frame
 // tracked again.
 //
-// Signals: a run of tracking.lost_after_failures consecutive self-check
-// failures (METHOD.md §3: the frames are dead-reckoned, and after that many
-// the motion since the last good frame is beyond what the alignment's basin
-// recovers), and a non-finite pose.
+// Signals:
+//  - a run of tracking.lost_after_failures consecutive self-check failures
+//    (METHOD.md §3: the frames are dead-reckoned, and after that many the
+//    motion since the last good frame is beyond what the alignment's basin
+//    recovers);
+//  - tracking.lost_gyro_contradictions of the last lost_after_failures
+//    aligned frames rotating more than tracking.lost_gyro_disagreement_deg
+//    away from the gyroscope: frozen or occluded images and a visual estimate
+//    drifting away pass the self check, but the gyroscope does not agree.
+//    Such a loss ends at a tracked frame once fewer remain in that window;
+//  - a non-finite pose.
 #include <cstdint>
+#include <deque>
 
 #include "edgevio/pipeline/frame_record.h"
 
@@ -16,16 +24,27 @@ namespace edgevio::pipeline {
 
 class LossMonitor {
  public:
-  explicit LossMonitor(int lost_after_failures) : lost_after_(lost_after_failures) {}
+  /// lost_gyro_contradictions or lost_gyro_disagreement_deg 0: no gyroscope signal.
+  LossMonitor(int lost_after_failures, double lost_gyro_disagreement_deg, int lost_gyro_contradictions)
+      : lost_after_(lost_after_failures),
+        gyro_disagreement_deg_(lost_gyro_disagreement_deg),
+        gyro_contradictions_(lost_gyro_contradictions) {}
 
   /// Sets r->status, and r->lost_since_ns and r->lost_reason where a loss begins.
   void update(FrameRecord* r);
 
  private:
+  enum class Cause { kNone, kFailures, kGyroscope };
+
   int lost_after_;
-  int failures_ = 0;                ///< consecutive self-check failures
+  double gyro_disagreement_deg_;
+  int gyro_contradictions_;
+  int failures_ = 0;  ///< consecutive self-check failures
   std::int64_t first_failure_ns_ = -1;
-  bool lost_ = false;
+  /// The last lost_after_ aligned frames: their times and whether the gyroscope contradicted them.
+  std::deque<std::pair<std::int64_t, bool>> recent_;
+  Cause lost_ = Cause::kNone;
+  std::int64_t tracked_again_ns_ = -1;  ///< the frame that ended the last loss (a new one begins after it)
 };
 
 }  // namespace edgevio::pipeline

@@ -27,7 +27,8 @@ Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tra
       T_b_c_(T_b_c),
       realtime_(realtime),
       pictures_(pictures),
-      loss_(config.tracking.lost_after_failures) {
+      loss_(config.tracking.lost_after_failures, config.tracking.lost_gyro_disagreement_deg,
+            config.tracking.lost_gyro_contradictions) {
   if (mode.imu || mode.loop) estimator_.emplace(config.estimator, noise, T_b_c, mode.imu, init.gyro_bias);
 }
 
@@ -49,6 +50,9 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   // The alignment's T_nr as the body's motion T_bn_br (what ground truth
   // gives directly: T_w_bn⁻¹·T_w_br), so the front end can be judged alone.
   r.link_T_bn_br = T_b_c_ * r.alignment.T_nr * T_b_c_.inverse();
+  const Vec3 b_g = r.state ? r.state->b_g : init_.gyro_bias;
+  if (const auto dR = gyroRotation(t_prev_, r.t_ns, b_g))
+    r.gyro_disagreement_deg = (dR->inverse() * T_w_b_last_.so3().inverse() * r.T_w_b.so3()).log().norm() * kRadToDeg;
   loss_.update(&r);
   t_before_last_ = t_prev_;
   T_w_b_before_last_ = T_w_b_last_;

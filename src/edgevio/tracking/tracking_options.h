@@ -12,6 +12,8 @@ struct TrackingOptions {
   int gyro_check_realign_levels;
   double imu_translation_check_m, rotation_prior_deg, rotation_prior_fraction;
   int lost_after_failures;
+  double lost_gyro_disagreement_deg;
+  int lost_gyro_contradictions;
   double static_init_window_s, static_chunk_s, static_accel_std_max, static_gyro_std_max;
 
   EDGEVIO_OPTIONS(TrackingOptions)
@@ -43,6 +45,13 @@ EDGEVIO_OPTIONS_TABLE(TrackingOptions,
            "this many consecutive self-check failures: the estimate is lost from the first of them until a frame tracks again "
            "(summary.json lost_intervals)",
            atLeast(1)),
+    number("lost_gyro_disagreement_deg", &S::lost_gyro_disagreement_deg, 2.0, "deg",
+           "the gyroscope contradicts a frame whose estimated rotation since the previous frame is this far from its own",
+           above(0)),
+    number("lost_gyro_contradictions", &S::lost_gyro_contradictions, 3, "-",
+           "this many contradicted frames among the last lost_after_failures: the estimate is lost from the first of them "
+           "until a frame tracks uncontradicted with fewer left in that window (frozen, occluded or drifting images; 0: off)",
+           atLeast(0)),
     number("static_init_window_s", &S::static_init_window_s, 1.0, "s", "IMU window at the start used for static initialisation",
            above(0)),
     number("static_chunk_s", &S::static_chunk_s, 0.1, "s",
