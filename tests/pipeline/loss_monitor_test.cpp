@@ -17,7 +17,7 @@ FrameRecord frame(int k, bool passed) {
 }
 
 TEST(LossMonitor, ConsecutiveFailuresLoseTheEstimateFromTheFirstUntilTrackedAgain) {
-  LossMonitor m(3, 2.0, 3);
+  LossMonitor m(false, 3, 2.0, 3);
   std::vector<FrameRecord> r;
   // Frame 0 is a first frame; 2-3 fail (two: not lost); 5-9 fail; 10 tracks again.
   for (int k = 0; k <= 11; ++k) r.push_back(frame(k, !(k == 2 || k == 3 || (k >= 5 && k <= 9))));
@@ -38,7 +38,7 @@ TEST(LossMonitor, ThreeFramesTheGyroscopeContradictsAmongTenAreALoss) {
   // tracked frame finds fewer than 3 in its window of 10: frame 13, when
   // frame 3 has left it.
   const auto run = [](double threshold, int contradictions, double nan_or_disagreement) {
-    LossMonitor m(10, threshold, contradictions);
+    LossMonitor m(false, 10, threshold, contradictions);
     std::vector<FrameRecord> r;
     for (int k = 0; k <= 15; ++k) {
       r.push_back(frame(k, true));
@@ -59,8 +59,29 @@ TEST(LossMonitor, ThreeFramesTheGyroscopeContradictsAmongTenAreALoss) {
     for (const FrameRecord& x : none) EXPECT_EQ(x.status, TrackingStatus::kOk) << x.t_ns;
 }
 
+TEST(LossMonitor, AFrozenImageIsLostAtOnceWithoutTheImuAndAFailureWithIt) {
+  // Frames 2-5 repeat frame 1's image and align to it (self check passed).
+  const auto run = [](bool imu) {
+    LossMonitor m(imu, 3, 2.0, 3);
+    std::vector<FrameRecord> r;
+    for (int k = 0; k <= 7; ++k) {
+      r.push_back(frame(k, true));
+      r.back().frozen_image = k >= 2 && k <= 5;
+    }
+    for (FrameRecord& x : r) m.update(&x);
+    return r;
+  };
+  const std::vector<FrameRecord> visual = run(false), inertial = run(true);
+  for (int k = 0; k <= 7; ++k) {
+    EXPECT_EQ(visual[k].status == TrackingStatus::kLost, k >= 2 && k <= 5) << k;
+    EXPECT_EQ(inertial[k].status == TrackingStatus::kLost, k >= 4 && k <= 5) << k;  // the third "failure"
+  }
+  EXPECT_EQ(visual[2].lost_reason, "the image repeats the previous frame's to the last pixel (a stalled or blank camera)");
+  EXPECT_EQ(inertial[4].lost_since_ns, inertial[2].t_ns);
+}
+
 TEST(LossMonitor, ANonFinitePoseIsLostAtOnce) {
-  LossMonitor m(10, 2.0, 3);
+  LossMonitor m(false, 10, 2.0, 3);
   FrameRecord ok = frame(1, true), bad = frame(2, true), again = frame(3, true);
   bad.T_w_b = geometry::SE3(geometry::SO3(), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
   m.update(&ok);

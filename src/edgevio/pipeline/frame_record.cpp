@@ -44,6 +44,8 @@ constexpr FrameColumn kColumns[] = {
        [](const R& r) { return real(r.alignment.mean_distance_px); }, 4},
       {"translation_sigma_m", "m", "std. dev. of the alignment's translation along its weakest direction, for 1 px of edge noise",
        [](const R& r) { return real(r.alignment.translation_sigma_m); }, 4, true},
+      {"frozen_image", "-", "1: the left image is the previous frame's to the last pixel (a stalled camera driver)",
+       [](const R& r) { return integer(r.frozen_image); }},
       {"gyro_disagreement_deg", "deg",
        "the estimate's rotation since the previous frame against the gyroscope's over that time (with the newest gyroscope "
        "bias estimate, else the static start's)",

@@ -75,6 +75,9 @@ struct FrameRecord {
 
   // The result.
   TrackingStatus status = TrackingStatus::kOk;
+  /// The frame's image is the previous frame's to the last pixel: a stalled
+  /// camera driver repeating its buffer (a real sensor's noise never does).
+  bool frozen_image = false;
   /// The angle between the estimate's rotation since the previous frame and
   /// the gyroscope's over that time [deg] (NaN: no IMU reading, a first frame).
   double gyro_disagreement_deg = std::numeric_limits<double>::quiet_NaN();

@@ -7,7 +7,7 @@
 namespace edgevio::pipeline {
 
 void LossMonitor::update(FrameRecord* r) {
-  const bool failed = r->aligned && !r->selfCheckPassed();
+  const bool failed = r->aligned && (!r->selfCheckPassed() || r->frozen_image);
   // (without a gyroscope reading the disagreement is NaN and compares false)
   const bool contradicted = r->aligned && gyro_contradictions_ > 0 && gyro_disagreement_deg_ > 0 &&
                             r->gyro_disagreement_deg > gyro_disagreement_deg_;
@@ -24,7 +24,8 @@ void LossMonitor::update(FrameRecord* r) {
     // Tracked again; a loss the gyroscope declared needs its window to clear too.
     if (lost_ != Cause::kNone && !contradicted && (lost_ != Cause::kGyroscope || contradictions < gyro_contradictions_)) {
       lost_ = Cause::kNone;
-      tracked_again_ns_ = r->t_ns;
+      // A new loss needs new evidence: what the gyroscope said during this one is explained.
+      recent_.clear();
     }
   }
   const auto begin = [&](Cause cause, std::int64_t since, std::string why) {
@@ -34,11 +35,12 @@ void LossMonitor::update(FrameRecord* r) {
   };
   if (!r->T_w_b.translation().allFinite() || !r->T_w_b.so3().matrix().allFinite()) {
     if (lost_ == Cause::kNone) begin(Cause::kFailures, r->t_ns, "non-finite pose");
+  } else if (lost_ == Cause::kNone && r->frozen_image && !imu_) {
+    begin(Cause::kFailures, r->t_ns, "the image repeats the previous frame's to the last pixel (a stalled or blank camera)");
   } else if (lost_ == Cause::kNone && failed && failures_ >= lost_after_) {
     begin(Cause::kFailures, first_failure_ns_, std::to_string(failures_) + " consecutive self-check failures");
   } else if (lost_ == Cause::kNone && contradicted && contradictions >= gyro_contradictions_) {
-    const auto first = std::find_if(recent_.begin(), recent_.end(),
-                                    [this](const auto& f) { return f.second && f.first > tracked_again_ns_; });
+    const auto first = std::find_if(recent_.begin(), recent_.end(), [](const auto& f) { return f.second; });
     char why[160];
     std::snprintf(why, sizeof why, "the gyroscope contradicts %d of the last %zu frames' rotation by over %.1f deg", contradictions,
                   recent_.size(), gyro_disagreement_deg_);

@@ -14,6 +14,10 @@
 //    away from the gyroscope: frozen or occluded images and a visual estimate
 //    drifting away pass the self check, but the gyroscope does not agree.
 //    Such a loss ends at a tracked frame once fewer remain in that window;
+//  - a frozen image (the previous frame's to the last pixel): in the visual
+//    modes the pose is then a guess at once, until a new image tracks; in
+//    the IMU modes, which carry the pose through, it counts as a self-check
+//    failure;
 //  - a non-finite pose.
 #include <cstdint>
 #include <deque>
@@ -25,8 +29,9 @@ namespace edgevio::pipeline {
 class LossMonitor {
  public:
   /// lost_gyro_contradictions or lost_gyro_disagreement_deg 0: no gyroscope signal.
-  LossMonitor(int lost_after_failures, double lost_gyro_disagreement_deg, int lost_gyro_contradictions)
-      : lost_after_(lost_after_failures),
+  LossMonitor(bool imu, int lost_after_failures, double lost_gyro_disagreement_deg, int lost_gyro_contradictions)
+      : imu_(imu),
+        lost_after_(lost_after_failures),
         gyro_disagreement_deg_(lost_gyro_disagreement_deg),
         gyro_contradictions_(lost_gyro_contradictions) {}
 
@@ -36,6 +41,7 @@ class LossMonitor {
  private:
   enum class Cause { kNone, kFailures, kGyroscope };
 
+  bool imu_;
   int lost_after_;
   double gyro_disagreement_deg_;
   int gyro_contradictions_;
@@ -44,7 +50,6 @@ class LossMonitor {
   /// The last lost_after_ aligned frames: their times and whether the gyroscope contradicted them.
   std::deque<std::pair<std::int64_t, bool>> recent_;
   Cause lost_ = Cause::kNone;
-  std::int64_t tracked_again_ns_ = -1;  ///< the frame that ended the last loss (a new one begins after it)
 };
 
 }  // namespace edgevio::pipeline

@@ -1,5 +1,6 @@
 #include "edgevio/pipeline/odometry.h"
 
+#include <cstring>
 #include <limits>
 
 #include "edgevio/common/time.h"
@@ -14,6 +15,14 @@ using tracking::KeyframeReason;
 
 namespace {
 SE3 poseOf(const imu::NavState& x) { return SE3(x.R_w_b, x.p_w); }
+
+bool samePixels(const cv::Mat& a, const cv::Mat& b) {
+  if (a.empty() || a.size() != b.size() || a.type() != b.type()) return false;
+  const std::size_t row_bytes = static_cast<std::size_t>(a.cols) * a.elemSize();
+  for (int y = 0; y < a.rows; ++y)
+    if (std::memcmp(a.ptr(y), b.ptr(y), row_bytes) != 0) return false;
+  return true;
+}
 }  // namespace
 
 Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tracker, const SE3& T_b_c,
@@ -27,7 +36,7 @@ Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tra
       T_b_c_(T_b_c),
       realtime_(realtime),
       pictures_(pictures),
-      loss_(config.tracking.lost_after_failures, config.tracking.lost_gyro_disagreement_deg,
+      loss_(mode.imu, config.tracking.lost_after_failures, config.tracking.lost_gyro_disagreement_deg,
             config.tracking.lost_gyro_contradictions) {
   if (mode.imu || mode.loop) estimator_.emplace(config.estimator, noise, T_b_c, mode.imu, init.gyro_bias);
 }
@@ -39,6 +48,10 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   r.dt_ms = frame.pyramid.dt_ms - frame.pyramid.lines_ms;
   r.lines_ms = frame.pyramid.lines_ms;
   if (t_first_ < 0) t_first_ = r.t_ns;
+  if (!frame.pyramid.levels.empty()) {
+    r.frozen_image = samePixels(frame.pyramid.levels[0].image, previous_image_);
+    previous_image_ = frame.pyramid.levels[0].image;
+  }
   // A frame that is not aligned (a first frame, a restart) still has a picture: its edges.
   if (pictures_ && !frame.pyramid.levels.empty())
     r.picture = std::make_shared<const tracking::AlignmentPicture>(

@@ -22,6 +22,8 @@
 // restarts at it. When its alignment to the keyframe fails, the previous
 // frame (already tracked, closer to it) becomes the keyframe first and the
 // frame is aligned again.
+#include <opencv2/core.hpp>
+
 #include <memory>
 #include <optional>
 #include <string>
@@ -106,6 +108,7 @@ class Odometry {
   bool realtime_;
   bool pictures_;
   LossMonitor loss_;
+  cv::Mat previous_image_;  ///< the previous frame's level-0 image (frozen-image check)
   std::optional<estimator::VioEstimator> estimator_;  ///< the window's modes
   KeyframeStore keyframes_;
   std::optional<Previous> previous_;
