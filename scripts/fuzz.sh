@@ -2,8 +2,9 @@
 # Fuzzes the readers of user files (tests/fuzz/fuzz_targets.h) with libFuzzer.
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]   (default 60 s, every target)
 # Builds build/fuzz with clang (address + undefined sanitizers, installing
-# clang with scripts/setup.sh --fuzz), then runs each target from its seeds,
-# keeping its corpus in out/fuzz/corpus/<target> between runs. A crash, a
+# clang with scripts/setup.sh --fuzz), then runs each target from its seeds
+# (built in code, and the real files of ../shared/data where it is there:
+# EDGEVIO_DATA_DIR), keeping its corpus in out/fuzz/corpus/<target> between runs. A crash, a
 # sanitizer report, a leak, an input over 2 GiB of memory or one that takes
 # over 10 s stops the target; its input is saved as out/fuzz/<target>-crash-*
 # (copy it to tests/fuzz/regressions/<target>/ once fixed: the unit tests
@@ -19,6 +20,17 @@ cmake -S . -B build/fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWith
 cmake --build build/fuzz -j"$(nproc 2>/dev/null || echo 2)" --target edgevio_fuzz
 fuzz=build/fuzz/tests/fuzz/edgevio_fuzz
 
+shared=${EDGEVIO_DATA_DIR:-../shared/data}
+# Real files of a target's kind from the shared data, cut to the fuzzer's
+# largest input (the first 64 KiB of a long CSV are still a valid file).
+shared_seeds() {
+  case $1 in
+    trajectory) ls "$shared"/trajectories/*/*/groundtruth* "$shared"/trajectories/uzhfpv/*.txt "$shared"/eval_reference/* ;;
+    imu_csv) ls "$shared"/trajectories/euroc/*/imu0.csv "$shared"/euroc/*/mav0/imu0/data.csv ;;
+    euroc_camera) ls "$shared"/euroc/*/mav0/cam?/sensor.yaml ;;
+  esac 2>/dev/null || true
+}
+
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || mapfile -t targets < <(EDGEVIO_FUZZ_TARGET=list "$fuzz" | cut -f1)
 mkdir -p out/fuzz
@@ -27,6 +39,8 @@ printf '%-14s %8s %10s %8s %6s  %s\n' target seconds executions corpus cover res
 for t in "${targets[@]}"; do
   corpus=out/fuzz/corpus/$t
   log=out/fuzz/$t.log
+  mkdir -p "$corpus"
+  for f in $(shared_seeds "$t"); do head -c 65536 "$f" >"$corpus/shared-$(echo "$f" | md5sum | cut -c1-12)"; done
   status=0
   EDGEVIO_FUZZ_TARGET=$t EDGEVIO_FUZZ_SEEDS=$corpus ASAN_OPTIONS=detect_leaks=1 \
     "$fuzz" "$corpus" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -max_len=65536 \
