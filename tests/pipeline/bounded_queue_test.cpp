@@ -1,10 +1,12 @@
 // The queue between pipeline threads: blocking push keeps every item in
 // order (offline determinism), tryPush refuses when full (real-time drops),
-// close ends the stream after the queued items.
+// close ends the stream after the queued items and releases a producer
+// waiting on a full queue or on the clock.
 #include "edgevio/pipeline/bounded_queue.h"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -33,6 +35,21 @@ TEST(BoundedQueue, TryPushRefusesWhenFullAndCloseEndsTheStream) {
   EXPECT_FALSE(q.tryPush(4));
   EXPECT_EQ(q.pop(), 1);
   EXPECT_EQ(q.pop(), 2);
+  EXPECT_FALSE(q.pop().has_value());
+}
+
+TEST(BoundedQueue, CloseReleasesAProducerWaitingOnAFullQueueOrOnTheClock) {
+  BoundedQueue<int> q(1);
+  ASSERT_TRUE(q.push(1));
+  bool pushed = true;
+  std::thread producer([&] { pushed = q.push(2); });  // blocks: the queue is full
+  const auto now = std::chrono::steady_clock::now();
+  EXPECT_FALSE(q.closedBy(now));  // a deadline passed: at once, not closed
+  q.close();
+  producer.join();
+  EXPECT_FALSE(pushed);
+  EXPECT_TRUE(q.closedBy(now + std::chrono::hours(1)));  // closed: at once, not in an hour
+  EXPECT_EQ(q.pop(), 1);
   EXPECT_FALSE(q.pop().has_value());
 }
 

@@ -61,16 +61,18 @@ PipelineResult runThreaded(io::Sequence& sequence, const std::vector<std::size_t
       const auto start = Clock::now();
       for (const std::size_t i : frames) {
         // Real time: the frame arrives at its timestamp; offline, when the driver gets to it.
+        // Either way, a closed queue (the consumer stopped) ends the reading.
         Clock::time_point released = Clock::now();
         if (realtime) {
           released = start + std::chrono::nanoseconds(sequence.frameTime(i) - sequence.frameTime(frames.front()));
-          std::this_thread::sleep_until(released);
+          if (loaded.closedBy(released)) break;
         }
         Loaded item = load(sequence, i, rect, released);
-        if (!realtime)
-          loaded.push(std::move(item));
-        else if (!loaded.tryPush(std::move(item)))
+        if (!realtime) {
+          if (!loaded.push(std::move(item))) break;
+        } else if (!loaded.tryPush(std::move(item))) {
           ++dropped;
+        }
       }
     } catch (...) {
       driver_error = std::current_exception();
@@ -88,7 +90,7 @@ PipelineResult runThreaded(io::Sequence& sequence, const std::vector<std::size_t
         if (item->readable) p.frame = tracking::prepareFrame(item->frame, rect, vision);
         p.load_ms = item->ms + msSince(t0);
         p.dropped_before = dropped;
-        prepared.push(std::move(p));
+        if (!prepared.push(std::move(p))) break;
       }
     } catch (...) {
       prepare_error = std::current_exception();
