@@ -1,6 +1,7 @@
 // Initial attitude and gyro bias from the first IMU window (METHOD.md §5,
 // `imu::staticInitialization`), on hand-made samples whose truth is known
-// in closed form: a rig at rest, a rig shaken along a line, and free fall.
+// in closed form: a rig at rest, a rig shaken along a line, and free fall;
+// and the gyroscope's rotation between two times, which no gap may span.
 #include "edgevio/imu/gyro_integration.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <random>
 
 namespace edgevio::imu {
@@ -82,6 +84,26 @@ TEST(StaticInitialization, FreeFallGivesNoAttitude) {
   const StaticInit s = staticInitialization(imu, 0, 1.0, 0.1, 0.25, 0.05);
   EXPECT_FALSE(s.is_static);
   EXPECT_EQ(s.R_w_b.matrix(), Mat3::Identity());
+}
+
+TEST(IntegrateGyro, ExactForAConstantRateAndRefusedAcrossAGap) {
+  // 1 rad/s about z at 200 Hz: 0.3 rad over 0.3 s (the midpoint rule is
+  // exact for a constant rate). Without the readings of 0.1-0.2 s the rate
+  // interpolated across the gap would still give 0.3 rad, but only because
+  // the rate happens to be constant: a gap longer than max_gap_s gives none.
+  std::vector<ImuSample> imu;
+  for (std::int64_t t = 0; t <= 400000000; t += kDtNs) imu.push_back({t, Vec3(0, 0, 1), Vec3(0, 0, kG)});
+  SO3 R;
+  ASSERT_TRUE(integrateGyro(imu, 50000000, 350000000, Vec3::Zero(), 0.05, &R));
+  EXPECT_NEAR(R.log().z(), 0.3, 1e-12);
+  std::vector<ImuSample> gap;
+  std::copy_if(imu.begin(), imu.end(), std::back_inserter(gap),
+               [](const ImuSample& s) { return s.t_ns <= 100000000 || s.t_ns >= 200000000; });
+  EXPECT_FALSE(integrateGyro(gap, 50000000, 350000000, Vec3::Zero(), 0.05, &R));
+  EXPECT_TRUE(R.log().isZero());
+  ASSERT_TRUE(integrateGyro(gap, 50000000, 350000000, Vec3::Zero(), 0.15, &R));  // a gap under max_gap_s is bridged
+  EXPECT_NEAR(R.log().z(), 0.3, 1e-12);
+  EXPECT_TRUE(integrateGyro(gap, 210000000, 350000000, Vec3::Zero(), 0.05, &R));  // after the gap: covered again
 }
 
 }  // namespace

@@ -8,6 +8,16 @@
 namespace edgevio::pipeline {
 namespace {
 
+/// The loss options with these values; the acceleration signal off unless given.
+tracking::TrackingOptions lossOptions(int lost_after, double gyro_deg, int contradictions, double accel_mps2 = 0.0) {
+  tracking::TrackingOptions o;
+  o.lost_after_failures = lost_after;
+  o.lost_gyro_disagreement_deg = gyro_deg;
+  o.lost_gyro_contradictions = contradictions;
+  o.lost_accel_mps2 = accel_mps2;
+  return o;
+}
+
 FrameRecord frame(int k, bool passed) {
   FrameRecord r;
   r.t_ns = 1000000000LL + k * 50000000LL;
@@ -17,7 +27,7 @@ FrameRecord frame(int k, bool passed) {
 }
 
 TEST(LossMonitor, ConsecutiveFailuresLoseTheEstimateFromTheFirstUntilTrackedAgain) {
-  LossMonitor m(false, 3, 2.0, 3);
+  LossMonitor m(false, lossOptions(3, 2.0, 3));
   std::vector<FrameRecord> r;
   // Frame 0 is a first frame; 2-3 fail (two: not lost); 5-9 fail; 10 tracks again.
   for (int k = 0; k <= 11; ++k) r.push_back(frame(k, !(k == 2 || k == 3 || (k >= 5 && k <= 9))));
@@ -38,7 +48,7 @@ TEST(LossMonitor, ThreeFramesTheGyroscopeContradictsAmongTenAreALoss) {
   // tracked frame finds fewer than 3 in its window of 10: frame 13, when
   // frame 3 has left it.
   const auto run = [](double threshold, int contradictions, double nan_or_disagreement) {
-    LossMonitor m(false, 10, threshold, contradictions);
+    LossMonitor m(false, lossOptions(10, threshold, contradictions));
     std::vector<FrameRecord> r;
     for (int k = 0; k <= 15; ++k) {
       r.push_back(frame(k, true));
@@ -62,7 +72,7 @@ TEST(LossMonitor, ThreeFramesTheGyroscopeContradictsAmongTenAreALoss) {
 TEST(LossMonitor, AFrozenImageIsLostAtOnceWithoutTheImuAndAFailureWithIt) {
   // Frames 2-5 repeat frame 1's image and align to it (self check passed).
   const auto run = [](bool imu) {
-    LossMonitor m(imu, 3, 2.0, 3);
+    LossMonitor m(imu, lossOptions(3, 2.0, 3));
     std::vector<FrameRecord> r;
     for (int k = 0; k <= 7; ++k) {
       r.push_back(frame(k, true));
@@ -81,7 +91,7 @@ TEST(LossMonitor, AFrozenImageIsLostAtOnceWithoutTheImuAndAFailureWithIt) {
 }
 
 TEST(LossMonitor, ANonFinitePoseIsLostAtOnce) {
-  LossMonitor m(false, 10, 2.0, 3);
+  LossMonitor m(false, lossOptions(10, 2.0, 3));
   FrameRecord ok = frame(1, true), bad = frame(2, true), again = frame(3, true);
   bad.T_w_b = geometry::SE3(geometry::SO3(), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
   m.update(&ok);
@@ -92,6 +102,30 @@ TEST(LossMonitor, ANonFinitePoseIsLostAtOnce) {
   EXPECT_EQ(bad.lost_since_ns, bad.t_ns);
   EXPECT_EQ(bad.lost_reason, "non-finite pose");
   EXPECT_EQ(again.status, TrackingStatus::kOk);
+}
+
+TEST(LossMonitor, AStepNoRigCouldAccelerateToIsLostUntilThePosesAreSmoothAgain) {
+  // Frame 4 aligned 0.5 m off (in another basin) and stays there: the step
+  // implies 0.5 m / (50 ms)^2 = 200 m/s^2 into frame 4 and as much out of it
+  // (frame 5's second difference), then the motion is smooth again.
+  const auto run = [](double accel_mps2) {
+    LossMonitor m(false, lossOptions(10, 2.0, 3, accel_mps2));
+    std::vector<FrameRecord> r;
+    for (int k = 0; k <= 7; ++k) {
+      r.push_back(frame(k, true));
+      r.back().implied_accel_mps2 = k == 4 || k == 5 ? 200.0 : 1.0;
+    }
+    for (FrameRecord& x : r) m.update(&x);
+    return r;
+  };
+  const std::vector<FrameRecord> r = run(100.0);
+  for (int k = 0; k <= 7; ++k) {
+    EXPECT_EQ(r[k].status == TrackingStatus::kLost, k == 4 || k == 5) << k;
+    EXPECT_EQ(r[k].lost_since_ns >= 0, k == 4) << k;
+  }
+  EXPECT_EQ(r[4].lost_reason, "the pose's step implies an acceleration of 200 m/s^2, over 100");
+  for (const auto& none : {run(0.0), run(250.0)})  // off, or a threshold above the step
+    for (const FrameRecord& x : none) EXPECT_EQ(x.status, TrackingStatus::kOk) << x.t_ns;
 }
 
 }  // namespace

@@ -35,7 +35,19 @@ bool forEachImuInterval(const std::vector<ImuSample>& imu, std::int64_t t0, std:
   return true;
 }
 
-bool integrateGyro(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1, const Vec3& bias, SO3* R) {
+bool imuGapWithin(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1, double max_gap_s) {
+  const auto byTime = [](const ImuSample& s, std::int64_t t) { return s.t_ns < t; };
+  auto it = std::lower_bound(imu.begin(), imu.end(), t0, byTime);
+  if (it != imu.begin()) --it;
+  for (; it != imu.end() && it + 1 != imu.end() && it->t_ns < t1; ++it)
+    if (toSeconds((it + 1)->t_ns - it->t_ns) > max_gap_s) return true;
+  return false;
+}
+
+bool integrateGyro(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1, const Vec3& bias, double max_gap_s,
+                   SO3* R) {
+  *R = SO3();
+  if (imuGapWithin(imu, t0, t1, max_gap_s)) return false;
   SO3 acc;
   const bool ok = forEachImuInterval(imu, t0, t1, [&](double dt, const Vec3&, const Vec3& w0, const Vec3&, const Vec3& w1) {
     acc = acc * SO3::exp((0.5 * (w0 + w1) - bias) * dt);

@@ -20,11 +20,18 @@ namespace edgevio::imu {
 bool forEachImuInterval(const std::vector<ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns,
                         const std::function<void(double, const Vec3&, const Vec3&, const Vec3&, const Vec3&)>& f);
 
+/// Whether two consecutive readings around [t0, t1] lie more than max_gap_s
+/// apart. Judged on the raw readings: cut at frame times, interpolation would
+/// bridge a gap in frame-length pieces.
+bool imuGapWithin(const std::vector<ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns, double max_gap_s);
+
 /// R_{b(t0) b(t1)}: body rotation from t0 to t1, Π exp((ω̄ − b_g)·Δt) with ω̄ the
 /// mean of consecutive samples (midpoint rule), samples clipped to [t0, t1] by
-/// linear interpolation. Returns false (and identity) without IMU coverage.
+/// linear interpolation. Returns false (and identity) without IMU coverage or
+/// across a gap longer than max_gap_s (a rate interpolated over a gap is no
+/// measurement).
 bool integrateGyro(const std::vector<ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns, const Vec3& gyro_bias,
-                   geometry::SO3* R_b0_b1);
+                   double max_gap_s, geometry::SO3* R_b0_b1);
 
 struct StaticInit {
   bool is_static = false;       ///< the window looked static (low accel and gyro spread)

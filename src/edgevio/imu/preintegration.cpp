@@ -133,13 +133,7 @@ Vec15 Preintegration::residual(const NavState& i, const NavState& j, Mat15* J_i,
 
 std::optional<Preintegration> preintegrate(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1,
                                            const Vec3& b_a, const Vec3& b_g, const ImuNoise& noise, double max_gap_s) {
-  // A gap is judged on the raw readings around [t0, t1]: cut at frame times,
-  // interpolation would bridge it in frame-length pieces.
-  const auto byTime = [](const ImuSample& s, std::int64_t t) { return s.t_ns < t; };
-  auto it = std::lower_bound(imu.begin(), imu.end(), t0, byTime);
-  if (it != imu.begin()) --it;
-  for (; it != imu.end() && it + 1 != imu.end() && it->t_ns < t1; ++it)
-    if (toSeconds((it + 1)->t_ns - it->t_ns) > max_gap_s) return std::nullopt;
+  if (imuGapWithin(imu, t0, t1, max_gap_s)) return std::nullopt;
   Preintegration p(b_a, b_g, noise);
   const bool covered = forEachImuInterval(imu, t0, t1, [&](double dt, const Vec3& a0, const Vec3& w0, const Vec3& a1, const Vec3& w1) {
     p.integrate(dt, a0, w0, a1, w1);

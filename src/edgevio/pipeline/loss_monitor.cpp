@@ -11,6 +11,7 @@ void LossMonitor::update(FrameRecord* r) {
   // (without a gyroscope reading the disagreement is NaN and compares false)
   const bool contradicted = r->aligned && gyro_contradictions_ > 0 && gyro_disagreement_deg_ > 0 &&
                             r->gyro_disagreement_deg > gyro_disagreement_deg_;
+  const bool implausible = accel_mps2_ > 0 && r->implied_accel_mps2 > accel_mps2_;
   if (r->aligned) {
     recent_.emplace_back(r->t_ns, contradicted);
     if (recent_.size() > static_cast<std::size_t>(lost_after_)) recent_.pop_front();
@@ -22,7 +23,8 @@ void LossMonitor::update(FrameRecord* r) {
   } else if (r->aligned) {
     failures_ = 0;
     // Tracked again; a loss the gyroscope declared needs its window to clear too.
-    if (lost_ != Cause::kNone && !contradicted && (lost_ != Cause::kGyroscope || contradictions < gyro_contradictions_)) {
+    if (lost_ != Cause::kNone && !contradicted && !implausible &&
+        (lost_ != Cause::kGyroscope || contradictions < gyro_contradictions_)) {
       lost_ = Cause::kNone;
       // A new loss needs new evidence: what the gyroscope said during this one is explained.
       recent_.clear();
@@ -39,6 +41,11 @@ void LossMonitor::update(FrameRecord* r) {
     begin(Cause::kFailures, r->t_ns, "the image repeats the previous frame's to the last pixel (a stalled or blank camera)");
   } else if (lost_ == Cause::kNone && failed && failures_ >= lost_after_) {
     begin(Cause::kFailures, first_failure_ns_, std::to_string(failures_) + " consecutive self-check failures");
+  } else if (lost_ == Cause::kNone && implausible) {
+    char why[160];
+    std::snprintf(why, sizeof why, "the pose's step implies an acceleration of %.0f m/s^2, over %.0f", r->implied_accel_mps2,
+                  accel_mps2_);
+    begin(Cause::kAcceleration, r->t_ns, why);
   } else if (lost_ == Cause::kNone && contradicted && contradictions >= gyro_contradictions_) {
     const auto first = std::find_if(recent_.begin(), recent_.end(), [](const auto& f) { return f.second; });
     char why[160];

@@ -18,33 +18,40 @@
 //    modes the pose is then a guess at once, until a new image tracks; in
 //    the IMU modes, which carry the pose through, it counts as a self-check
 //    failure;
+//  - a pose whose step implies an acceleration beyond tracking.lost_accel_mps2
+//    (the alignment went to another basin, or the estimate exploded); such a
+//    loss ends at a tracked frame with a plausible one again;
 //  - a non-finite pose.
 #include <cstdint>
 #include <deque>
 
 #include "edgevio/pipeline/frame_record.h"
+#include "edgevio/tracking/tracking_options.h"
 
 namespace edgevio::pipeline {
 
 class LossMonitor {
  public:
-  /// lost_gyro_contradictions or lost_gyro_disagreement_deg 0: no gyroscope signal.
-  LossMonitor(bool imu, int lost_after_failures, double lost_gyro_disagreement_deg, int lost_gyro_contradictions)
+  /// The tracking.lost_* options; lost_gyro_contradictions or
+  /// lost_gyro_disagreement_deg 0: no gyroscope signal; lost_accel_mps2 0: no acceleration signal.
+  LossMonitor(bool imu, const tracking::TrackingOptions& o)
       : imu_(imu),
-        lost_after_(lost_after_failures),
-        gyro_disagreement_deg_(lost_gyro_disagreement_deg),
-        gyro_contradictions_(lost_gyro_contradictions) {}
+        lost_after_(o.lost_after_failures),
+        gyro_disagreement_deg_(o.lost_gyro_disagreement_deg),
+        gyro_contradictions_(o.lost_gyro_contradictions),
+        accel_mps2_(o.lost_accel_mps2) {}
 
   /// Sets r->status, and r->lost_since_ns and r->lost_reason where a loss begins.
   void update(FrameRecord* r);
 
  private:
-  enum class Cause { kNone, kFailures, kGyroscope };
+  enum class Cause { kNone, kFailures, kGyroscope, kAcceleration };
 
   bool imu_;
   int lost_after_;
   double gyro_disagreement_deg_;
   int gyro_contradictions_;
+  double accel_mps2_;
   int failures_ = 0;  ///< consecutive self-check failures
   std::int64_t first_failure_ns_ = -1;
   /// The last lost_after_ aligned frames: their times and whether the gyroscope contradicted them.

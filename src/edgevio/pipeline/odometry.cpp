@@ -36,8 +36,7 @@ Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tra
       T_b_c_(T_b_c),
       realtime_(realtime),
       pictures_(pictures),
-      loss_(mode.imu, config.tracking.lost_after_failures, config.tracking.lost_gyro_disagreement_deg,
-            config.tracking.lost_gyro_contradictions) {
+      loss_(mode.imu, config.tracking) {
   if (mode.imu || mode.loop) estimator_.emplace(config.estimator, noise, T_b_c, mode.imu, init.gyro_bias);
 }
 
@@ -66,6 +65,12 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   const Vec3 b_g = r.state ? r.state->b_g : init_.gyro_bias;
   if (const auto dR = gyroRotation(t_prev_, r.t_ns, b_g))
     r.gyro_disagreement_deg = (dR->inverse() * T_w_b_last_.so3().inverse() * r.T_w_b.so3()).log().norm() * kRadToDeg;
+  if (t_before_last_ >= 0 && t_before_last_ < t_prev_ && t_prev_ < r.t_ns) {
+    const double dt1 = toSeconds(t_prev_ - t_before_last_), dt2 = toSeconds(r.t_ns - t_prev_);
+    const Vec3 v1 = (T_w_b_last_.translation() - T_w_b_before_last_.translation()) / dt1;
+    const Vec3 v2 = (r.T_w_b.translation() - T_w_b_last_.translation()) / dt2;
+    r.implied_accel_mps2 = (2.0 * (v2 - v1) / (dt1 + dt2)).norm();
+  }
   loss_.update(&r);
   t_before_last_ = t_prev_;
   T_w_b_before_last_ = T_w_b_last_;
@@ -122,11 +127,8 @@ void Odometry::processInWindow(tracking::PreparedFrame frame, FrameRecord* r) {
     // alignment's rotation prior. Not the window's relative estimate, which
     // the same links pulled: a prior from it would feed their errors back.
     p.gyro_since = [this, t, b_g = last.b_g](std::int64_t t_ref) { return gyroRotation(t_ref, t, b_g); };
-  } else if (const auto dR = gyroRotation(t_prev_, t, init_.gyro_bias)) {
-    p.T_w_b = SE3(last.R_w_b * *dR, last.p_w);  // the paper's guess: gyro rotation, previous translation
-    p.reliable = tracking::PredictionReliability::kRotation;
   } else {
-    p.T_w_b = poseOf(last);
+    p = gyroPrediction(poseOf(last), t);
   }
   const auto keyframe_before = keyframes_.currentTime();
   const Tracked tracked = track(frame, p, r);
@@ -154,12 +156,7 @@ void Odometry::bridgeImuGap(tracking::PreparedFrame frame, FrameRecord* r) {
   // last two frames' motion, continued), and the window waits, holding its
   // last state, until the IMU is back.
   if (estimator_->newestTime() == t_prev_) r->events.push_back("IMU gap: tracked by the edges alone until the IMU is back");
-  tracking::Prediction p;
-  p.T_w_b = T_w_b_last_;
-  if (t_before_last_ >= 0 && t_before_last_ < t_prev_)
-    p.T_w_b = geometry::interpolate(T_w_b_before_last_, T_w_b_last_,
-                                    1.0 + static_cast<double>(r->t_ns - t_prev_) / static_cast<double>(t_prev_ - t_before_last_));
-  const Tracked tracked = track(frame, p, r);
+  const Tracked tracked = track(frame, constantVelocityPrediction(r->t_ns), r);
   r->T_w_b = tracked.T_w_b;
   decideKeyframe(std::move(frame), tracked.T_w_b, tracked.vote, r);
 }
@@ -182,9 +179,22 @@ void Odometry::restartAfterImuGap(FrameRecord* r) {
 tracking::Prediction Odometry::gyroPrediction(const SE3& T_w_b_last, std::int64_t t_ns) const {
   // Rotation from the gyroscope, translation from the previous estimate (METHOD.md §3).
   const auto dR = gyroRotation(t_prev_, t_ns, init_.gyro_bias);
+  if (!dR) return constantVelocityPrediction(t_ns);
   tracking::Prediction p;
-  p.T_w_b = SE3(T_w_b_last.so3() * (dR ? *dR : SO3()), T_w_b_last.translation());
-  p.reliable = dR ? tracking::PredictionReliability::kRotation : tracking::PredictionReliability::kNone;
+  p.T_w_b = SE3(T_w_b_last.so3() * *dR, T_w_b_last.translation());
+  p.reliable = tracking::PredictionReliability::kRotation;
+  return p;
+}
+
+tracking::Prediction Odometry::constantVelocityPrediction(std::int64_t t_ns) const {
+  // Without the gyroscope: the last two frames' motion, continued. From the
+  // last pose alone, a frame in fast motion can align into another basin
+  // that passes the self check (docs/experiments/2026-12-02-imu-gap-bridge.md).
+  tracking::Prediction p;
+  p.T_w_b = T_w_b_last_;
+  if (t_before_last_ >= 0 && t_before_last_ < t_prev_)
+    p.T_w_b = geometry::interpolate(T_w_b_before_last_, T_w_b_last_,
+                                    1.0 + static_cast<double>(t_ns - t_prev_) / static_cast<double>(t_prev_ - t_before_last_));
   return p;
 }
 
@@ -327,7 +337,7 @@ SE3 Odometry::keyframePose(const Keyframe& k) const {
 
 std::optional<SO3> Odometry::gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const {
   SO3 R;
-  if (t0 < 0 || !imu::integrateGyro(imu_, t0, t1, bias, &R)) return std::nullopt;
+  if (t0 < 0 || !imu::integrateGyro(imu_, t0, t1, bias, config_.estimator.max_imu_gap_s, &R)) return std::nullopt;
   return R;
 }
 

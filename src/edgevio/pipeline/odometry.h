@@ -77,7 +77,10 @@ class Odometry {
   void bridgeImuGap(tracking::PreparedFrame frame, FrameRecord* r);
   void restartAfterImuGap(FrameRecord* r);
 
+  /// The gyroscope's rotation since the previous frame on T_w_b_last, or
+  /// without it (no reading, a gap) the constant-velocity prediction.
   tracking::Prediction gyroPrediction(const geometry::SE3& T_w_b_last, std::int64_t t_ns) const;
+  tracking::Prediction constantVelocityPrediction(std::int64_t t_ns) const;
   /// Aligns the frame to the current keyframe, promoting the previous frame when that fails.
   Tracked track(const tracking::PreparedFrame& frame, const tracking::Prediction& p, FrameRecord* r);
   /// Offers the frame's tracking link to the window; true when it entered.

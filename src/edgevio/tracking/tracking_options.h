@@ -14,6 +14,7 @@ struct TrackingOptions {
   int lost_after_failures;
   double lost_gyro_disagreement_deg;
   int lost_gyro_contradictions;
+  double lost_accel_mps2;
   double static_init_window_s, static_chunk_s, static_accel_std_max, static_gyro_std_max;
 
   EDGEVIO_OPTIONS(TrackingOptions)
@@ -52,6 +53,10 @@ EDGEVIO_OPTIONS_TABLE(TrackingOptions,
            "this many contradicted frames among the last lost_after_failures: the estimate is lost from the first of them "
            "until a frame tracks uncontradicted with fewer left in that window (frozen, occluded or drifting images; 0: off)",
            atLeast(0)),
+    number("lost_accel_mps2", &S::lost_accel_mps2, 1000.0, "m/s^2",
+           "a pose whose step from the previous one implies an acceleration beyond this (100 g: no rig's motion, an "
+           "alignment gone to another basin) is lost, until a frame tracks with a plausible one",
+           above(0).orOff()),
     number("static_init_window_s", &S::static_init_window_s, 1.0, "s", "IMU window at the start used for static initialisation",
            above(0)),
     number("static_chunk_s", &S::static_chunk_s, 0.1, "s",
