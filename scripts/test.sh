@@ -2,8 +2,11 @@
 # Builds edgevio and runs every test (the README's test command; .ci/run calls it).
 #  1. installs missing Debian packages (scripts/setup.sh --test, idempotent);
 #  2. Release build with warnings as errors, then all tests (ctest);
-#  3. address+undefined sanitizer build, then the unit tests again.
-# Set EDGEVIO_SKIP_SANITIZE=1 to skip step 3 during development.
+#  3. address+undefined sanitizer build, then the unit tests again;
+#  4. thread sanitizer build, then the tests of every edgevio thread (the
+#     pipeline's three offline and in real time, shutdown on errors, the
+#     live server, the simulator's and renderer's workers).
+# Set EDGEVIO_SKIP_SANITIZE=1 to skip steps 3 and 4 during development.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -28,4 +31,13 @@ if [ "${EDGEVIO_SKIP_SANITIZE:-0}" != "1" ]; then
   echo "== Unit tests under sanitizers =="
   (cd build/sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
      ctest --output-on-failure -j"$jobs" -L unit)
+
+  echo "== Thread sanitizer build =="
+  cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+        -DEDGEVIO_WERROR=ON -DEDGEVIO_TSAN=ON -DEDGEVIO_BUILD_BENCH=OFF >/dev/null
+  cmake --build build/tsan -j"$jobs" --target edgevio_unit_tests
+  echo "== Threads under the thread sanitizer =="
+  (cd build/tsan && TSAN_OPTIONS="halt_on_error=1 suppressions=$PWD/../../tests/tsan_suppressions.txt" \
+     ctest --output-on-failure -j"$jobs" -L unit \
+       -R 'BoundedQueue|ReaderError|ConsumerError|WholeRun|LiveServer|RunSummary|Renderer|Simulator')
 fi

@@ -6,9 +6,26 @@
 #include <fstream>
 #include <unistd.h>
 
+#ifdef EDGEVIO_TSAN
+#include <opencv2/core/utility.hpp>
+#endif
+
 namespace edgevio::test {
 
 namespace fs = std::filesystem;
+
+#ifdef EDGEVIO_TSAN
+namespace {
+// ThreadSanitizer cannot see how TBB (not instrumented) hands OpenCV's
+// parallel loops to its threads, and reports every such hand-off as a race.
+// Under TSan OpenCV runs each function on the calling thread (0: no threads
+// of its own), so what TSan checks is edgevio's threads.
+[[maybe_unused]] const bool kOpenCvOnTheCallingThread = [] {
+  cv::setNumThreads(0);
+  return true;
+}();
+}  // namespace
+#endif
 
 std::string sharedDataDir() {
   const char* env = std::getenv("EDGEVIO_DATA_DIR");

@@ -1,7 +1,9 @@
 // The three pipeline threads stop cleanly whatever fails: a reader that
 // throws halfway (its error reaches the caller after the frames before it),
 // and a consumer that throws while both queues are full and both producers
-// wait on them (nothing more is read, offline or in real time).
+// wait on them (nothing more is read, offline or in real time); and a whole
+// run through every thread accounts for every frame (the thread-sanitizer
+// stage of scripts/test.sh runs these).
 #include "edgevio/pipeline/threaded_pipeline.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +19,7 @@
 #include "common/mini_dataset.h"
 #include "common/test_support.h"
 #include "edgevio/common/error.h"
+#include "edgevio/pipeline/run.h"
 
 namespace edgevio::pipeline {
 namespace {
@@ -149,6 +152,28 @@ TEST(ConsumerError, InRealTimeTheDriverStopsWaitingForTheNextFrame) {
   EXPECT_GE(reads_at_error, 1u);
   EXPECT_EQ(sequence.reads, reads_at_error);
 }
+
+class WholeRun : public ::testing::TestWithParam<bool> {};
+
+TEST_P(WholeRun, ThroughEveryThreadAccountsForEveryFrame) {
+  // The full system on 12 small frames: the driver reads, the second thread
+  // builds pyramids, this one tracks, decodes keyframes' right images,
+  // estimates and writes. In real time a frame may be dropped, and counted.
+  TempDir dir;
+  const std::string mini = test::writeMiniDataset(dir, patterned(12, 50'000'000));
+  RunRequest req(mini, dir.file("out"));
+  req.realtime = GetParam();
+  const RunSummary s = run(req, Config{});
+  EXPECT_EQ(s.frames_to_process, 12u);
+  EXPECT_EQ(s.frames + s.dropped_frames + s.unreadable_frames, 12u);
+  EXPECT_EQ(s.unaccountedFrames(), 0);
+  if (!req.realtime) {
+    EXPECT_EQ(s.dropped_frames, 0u);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Pipeline, WholeRun, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& p) { return p.param ? "realtime" : "offline"; });
 
 }  // namespace
 }  // namespace edgevio::pipeline
