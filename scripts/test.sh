@@ -35,9 +35,8 @@ if [ "${EDGEVIO_SKIP_SANITIZE:-0}" != "1" ]; then
   echo "== Thread sanitizer build =="
   cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
         -DEDGEVIO_WERROR=ON -DEDGEVIO_TSAN=ON -DEDGEVIO_BUILD_BENCH=OFF >/dev/null
-  cmake --build build/tsan -j"$jobs" --target edgevio_unit_tests
+  cmake --build build/tsan -j"$jobs" --target edgevio_thread_tests
   echo "== Threads under the thread sanitizer =="
   (cd build/tsan && TSAN_OPTIONS="halt_on_error=1 suppressions=$PWD/../../tests/tsan_suppressions.txt" \
-     ctest --output-on-failure -j"$jobs" -L unit \
-       -R 'BoundedQueue|ReaderError|ConsumerError|WholeRun|LiveServer|RunSummary|Renderer|Simulator')
+     ctest --output-on-failure -j"$jobs" -L thread)
 fi
