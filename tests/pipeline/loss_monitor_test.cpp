@@ -69,6 +69,33 @@ TEST(LossMonitor, ThreeFramesTheGyroscopeContradictsAmongTenAreALoss) {
     for (const FrameRecord& x : none) EXPECT_EQ(x.status, TrackingStatus::kOk) << x.t_ns;
 }
 
+TEST(LossMonitor, ScatteredFailuresAreEvidenceWithoutTheImuOnly) {
+  // Frames 2 and 5 fail the self check, frame 7 rotates 2.5 deg off the
+  // gyroscope: three suspects among ten. Without the IMU a failed frame's
+  // pose is a guess, so that is a loss; with the IMU, which carries failed
+  // frames, one contradiction is none.
+  const auto run = [](bool imu) {
+    LossMonitor m(imu, lossOptions(10, 2.0, 3));
+    std::vector<FrameRecord> r;
+    for (int k = 0; k <= 16; ++k) {
+      r.push_back(frame(k, !(k == 2 || k == 5)));
+      r.back().gyro_disagreement_deg = k == 7 ? 2.5 : 0.2;
+    }
+    for (FrameRecord& x : r) m.update(&x);
+    return r;
+  };
+  const std::vector<FrameRecord> visual = run(false), inertial = run(true);
+  // Lost at 7 (since 2); frame 8 tracks but its window (frames 0-8 aligned
+  // from 1) still holds 3 suspects, and so on until frame 12, whose window
+  // (3-12) holds 2.
+  for (int k = 0; k <= 16; ++k) {
+    EXPECT_EQ(visual[k].status == TrackingStatus::kLost, k >= 7 && k <= 11) << k;
+    EXPECT_EQ(inertial[k].status, TrackingStatus::kOk) << k;
+  }
+  EXPECT_EQ(visual[7].lost_since_ns, visual[2].t_ns);
+  EXPECT_EQ(visual[7].lost_reason, "3 of the last 7 frames failed the self check or their rotation is over 2.0 deg from the gyroscope's");
+}
+
 TEST(LossMonitor, AFrozenImageIsLostAtOnceWithoutTheImuAndAFailureWithIt) {
   // Frames 2-5 repeat frame 1's image and align to it (self check passed).
   const auto run = [](bool imu) {

@@ -13,21 +13,25 @@ void LossMonitor::update(FrameRecord* r) {
                             r->gyro_disagreement_deg > gyro_disagreement_deg_;
   const bool implausible = accel_mps2_ > 0 && r->implied_accel_mps2 > accel_mps2_;
   if (r->aligned) {
-    recent_.emplace_back(r->t_ns, contradicted);
+    recent_.push_back({r->t_ns, contradicted, failed});
     if (recent_.size() > static_cast<std::size_t>(lost_after_)) recent_.pop_front();
   }
-  const int contradictions = static_cast<int>(std::count_if(recent_.begin(), recent_.end(), [](const auto& f) { return f.second; }));
+  // Without the IMU a failed frame's pose is a guess: in the visual modes
+  // failures are evidence beside the gyroscope's contradictions.
+  const auto suspect = [this](const Recent& f) { return f.contradicted || (!imu_ && f.failed); };
+  int suspects = static_cast<int>(std::count_if(recent_.begin(), recent_.end(), suspect));
   if (failed) {
     if (failures_ == 0) first_failure_ns_ = r->t_ns;
     ++failures_;
   } else if (r->aligned) {
     failures_ = 0;
-    // Tracked again; a loss the gyroscope declared needs its window to clear too.
+    // Tracked again; a loss the window of evidence declared needs that window to clear too.
     if (lost_ != Cause::kNone && !contradicted && !implausible &&
-        (lost_ != Cause::kGyroscope || contradictions < gyro_contradictions_)) {
+        (lost_ != Cause::kEvidence || suspects < gyro_contradictions_)) {
       lost_ = Cause::kNone;
-      // A new loss needs new evidence: what the gyroscope said during this one is explained.
+      // A new loss needs new evidence: what was seen during this one is explained.
       recent_.clear();
+      suspects = 0;
     }
   }
   const auto begin = [&](Cause cause, std::int64_t since, std::string why) {
@@ -46,12 +50,20 @@ void LossMonitor::update(FrameRecord* r) {
     std::snprintf(why, sizeof why, "the pose's step implies an acceleration of %.0f m/s^2, over %.0f", r->implied_accel_mps2,
                   accel_mps2_);
     begin(Cause::kAcceleration, r->t_ns, why);
-  } else if (lost_ == Cause::kNone && contradicted && contradictions >= gyro_contradictions_) {
-    const auto first = std::find_if(recent_.begin(), recent_.end(), [](const auto& f) { return f.second; });
-    char why[160];
-    std::snprintf(why, sizeof why, "the gyroscope contradicts %d of the last %zu frames' rotation by over %.1f deg", contradictions,
-                  recent_.size(), gyro_disagreement_deg_);
-    begin(Cause::kGyroscope, first->first, why);
+  } else if (lost_ == Cause::kNone && gyro_contradictions_ > 0 && r->aligned && !recent_.empty() && suspect(recent_.back()) &&
+             suspects >= gyro_contradictions_) {
+    const auto first = std::find_if(recent_.begin(), recent_.end(), suspect);
+    const int contradictions =
+        static_cast<int>(std::count_if(recent_.begin(), recent_.end(), [](const Recent& f) { return f.contradicted; }));
+    char why[200];
+    if (contradictions == suspects)
+      std::snprintf(why, sizeof why, "the gyroscope contradicts %d of the last %zu frames' rotation by over %.1f deg", contradictions,
+                    recent_.size(), gyro_disagreement_deg_);
+    else
+      std::snprintf(why, sizeof why,
+                    "%d of the last %zu frames failed the self check or their rotation is over %.1f deg from the gyroscope's",
+                    suspects, recent_.size(), gyro_disagreement_deg_);
+    begin(Cause::kEvidence, first->t_ns, why);
   }
   r->status = lost_ != Cause::kNone ? TrackingStatus::kLost : TrackingStatus::kOk;
 }

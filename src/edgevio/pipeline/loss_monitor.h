@@ -13,7 +13,10 @@
 //    aligned frames rotating more than tracking.lost_gyro_disagreement_deg
 //    away from the gyroscope: frozen or occluded images and a visual estimate
 //    drifting away pass the self check, but the gyroscope does not agree.
-//    Such a loss ends at a tracked frame once fewer remain in that window;
+//    In the visual modes a self-check failure counts as such evidence too
+//    (its pose is a guess); in the IMU modes, which carry a failed frame, it
+//    does not. Such a loss ends at a tracked frame once fewer remain in that
+//    window;
 //  - a frozen image (the previous frame's to the last pixel): in the visual
 //    modes the pose is then a guess at once, until a new image tracks; in
 //    the IMU modes, which carry the pose through, it counts as a self-check
@@ -45,7 +48,11 @@ class LossMonitor {
   void update(FrameRecord* r);
 
  private:
-  enum class Cause { kNone, kFailures, kGyroscope, kAcceleration };
+  enum class Cause { kNone, kFailures, kEvidence, kAcceleration };
+  struct Recent {
+    std::int64_t t_ns;
+    bool contradicted, failed;
+  };
 
   bool imu_;
   int lost_after_;
@@ -54,8 +61,8 @@ class LossMonitor {
   double accel_mps2_;
   int failures_ = 0;  ///< consecutive self-check failures
   std::int64_t first_failure_ns_ = -1;
-  /// The last lost_after_ aligned frames: their times and whether the gyroscope contradicted them.
-  std::deque<std::pair<std::int64_t, bool>> recent_;
+  /// The last lost_after_ aligned frames: their times, whether the gyroscope contradicted them and whether they failed.
+  std::deque<Recent> recent_;
   Cause lost_ = Cause::kNone;
 };
 

@@ -50,8 +50,9 @@ EDGEVIO_OPTIONS_TABLE(TrackingOptions,
            "the gyroscope contradicts a frame whose estimated rotation since the previous frame is this far from its own",
            above(0)),
     number("lost_gyro_contradictions", &S::lost_gyro_contradictions, 3, "-",
-           "this many contradicted frames among the last lost_after_failures: the estimate is lost from the first of them "
-           "until a frame tracks uncontradicted with fewer left in that window (frozen, occluded or drifting images; 0: off)",
+           "this many contradicted frames (in the visual modes: or frames failing the self check) among the last "
+           "lost_after_failures: the estimate is lost from the first of them until a frame tracks uncontradicted with fewer "
+           "left in that window (frozen, occluded or drifting images; 0: off)",
            atLeast(0)),
     number("lost_accel_mps2", &S::lost_accel_mps2, 1000.0, "m/s^2",
            "a pose whose step from the previous one implies an acceleration beyond this (100 g: no rig's motion, an "
