@@ -37,6 +37,13 @@ int main(int argc, char** argv) {
   sequenceOptions(info_cmd, &info.source);
   info_cmd->add_option("--config", info.config, "Config file (YAML; default: built-in defaults)");
 
+  cli::DoctorArgs doc;
+  auto* doctor_cmd = app.add_subcommand("doctor", "Check a dataset's calibration, clocks, IMU and images before a run");
+  sequenceOptions(doctor_cmd, &doc.source);
+  doctor_cmd->add_option("--config", doc.config, "Config file (YAML; section doctor: what it reads, its thresholds)");
+  doctor_cmd->add_option("--format", doc.format, "Output format")->check(CLI::IsMember({"text", "json"}));
+  doctor_cmd->add_option("--html", doc.html, "The page with the plots of the evidence (empty: none)");
+
   cli::RunArgs run;
   auto* run_cmd = app.add_subcommand("run", "Estimate a trajectory from a dataset");
   sequenceOptions(run_cmd, &run.source);
@@ -95,6 +102,8 @@ int main(int argc, char** argv) {
   sim_cmd->add_option("--calib", sim.calib, "Calibration: ASL folder or Kalibr camchain YAML (default: EuRoC)");
   sim_cmd->add_option("--vignetting", sim.vignetting, "Vignetting strength k (default: config sim.vignetting)");
   sim_cmd->add_option("--stereo-mismatch", sim.stereo_mismatch, "Right/left gain mismatch (default: config)");
+  sim_cmd->add_option("--imu-time-offset", sim.imu_time_offset_ms,
+                      "IMU clock minus camera clock in ms: the IMU's stamps are late by this (default: config)");
   sim_cmd->add_option("--config", sim.config, "Config file (YAML)");
   cli::BenchArgs bench;
   auto* bench_cmd = app.add_subcommand("bench", "Run a benchmark matrix of sequences x modes x skips");
@@ -130,6 +139,7 @@ int main(int argc, char** argv) {
   }
 
   if (*info_cmd) return cli::info(info, std::cout, std::cerr);
+  if (*doctor_cmd) return cli::doctor(doc, std::cout, std::cerr);
   if (*eval_cmd) return cli::eval(ev, std::cout, std::cerr);
   if (*run_cmd) return cli::run(run, std::cout, std::cerr);
   if (*convert_cmd) return cli::convert(conv, std::cout, std::cerr);

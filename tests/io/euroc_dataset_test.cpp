@@ -58,6 +58,19 @@ TEST(EurocDataset, MiniFolderReadsCompletely) {
   EXPECT_EQ(d2.stereoPairs().size(), 5u);
 }
 
+TEST(EurocDataset, ImuTimeOffsetMovesTheImuOntoTheCamerasClock) {
+  // dataset.imu_time_offset_ms is the IMU's clock minus the cameras': a
+  // reading stamped t was taken at camera time t - offset.
+  TempDir dir;
+  const std::string root = test::writeMiniDataset(dir);
+  DatasetOptions shifted;
+  shifted.imu_time_offset_ms = 12.5;
+  const EurocDataset raw(root, DatasetOptions{}), moved(root, shifted);
+  ASSERT_EQ(raw.imu().size(), moved.imu().size());
+  for (std::size_t i = 0; i < raw.imu().size(); ++i) EXPECT_EQ(raw.imu()[i].t_ns - moved.imu()[i].t_ns, 12500000);
+  EXPECT_EQ(raw.frameTime(0), moved.frameTime(0));
+}
+
 TEST(EurocDataset, MissingImageIsSkippedWithWarning) {
   TempDir dir;
   const std::string root = test::writeMiniDataset(dir);

@@ -89,6 +89,24 @@ TEST(Simulator, SkipKeepsEveryKPlusOneFrameAndTheImu) {
   EXPECT_EQ(s.imu_samples, 121u);
 }
 
+TEST(Simulator, ImuTimeOffsetStampsTheImuLateAndNothingElse) {
+  TempDir a, b;
+  sim::SimOptions late = test::fastSimOptions();
+  late.imu_time_offset_ms = 7.0;
+  simulate(test::shortScenario(a.path()), test::fastSimOptions());
+  simulate(test::shortScenario(b.path()), late);
+  const auto imu_a = io::readImuCsv(a.path() + "/mav0/imu0/data.csv", 1.0, nullptr);
+  const auto imu_b = io::readImuCsv(b.path() + "/mav0/imu0/data.csv", 1.0, nullptr);
+  ASSERT_EQ(imu_a.size(), imu_b.size());
+  for (std::size_t i = 0; i < imu_a.size(); ++i) {
+    EXPECT_EQ(imu_b[i].t_ns - imu_a[i].t_ns, 7000000);
+    EXPECT_EQ(imu_b[i].gyro, imu_a[i].gyro);
+  }
+  // Images and ground truth stay on the cameras' (true) clock.
+  for (const char* file : {"/mav0/cam0/data.csv", "/mav0/state_groundtruth_estimate0/data.csv"})
+    EXPECT_EQ(test::readFile(a.path() + file), test::readFile(b.path() + file)) << file;
+}
+
 TEST(Simulator, ReplaysARealImuLogAndKeepsItsBiases) {
   EDGEVIO_REQUIRE_SHARED_DATA("trajectories/euroc/V1_02_medium");
   TempDir dir;

@@ -3,6 +3,7 @@
 // the command line and calls these; each returns the process exit status:
 //   0 success, 1 bad input or failed run (message on err), 2 not implemented.
 #include <iosfwd>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,15 @@ struct InfoArgs {
 };
 /// `edgevio info DATA`: one JSON object describing an ASL folder or a bag.
 int info(const InfoArgs& args, std::ostream& out, std::ostream& err);
+
+struct DoctorArgs {
+  io::SequenceSource source;
+  std::string config;              ///< optional config file
+  std::string format = "text";     ///< text | json
+  std::string html = "doctor.html";  ///< the page with the plots (empty: none)
+};
+/// `edgevio doctor DATA`: what is wrong with a rig's data, before any run.
+int doctor(const DoctorArgs& args, std::ostream& out, std::ostream& err);
 
 struct EvalArgs {
   std::string gt, est, results_dir, config;
@@ -43,6 +53,7 @@ struct SimulateArgs {
   double drop_rate = 0.0;
   int skip = 0;
   double vignetting = -1.0, stereo_mismatch = -1.0;  ///< < 0: from config
+  double imu_time_offset_ms = std::numeric_limits<double>::quiet_NaN();  ///< NaN: from config
 };
 /// `edgevio simulate`: a synthetic EuRoC ASL folder (issue #4).
 int simulate(const SimulateArgs& args, std::ostream& out, std::ostream& err);

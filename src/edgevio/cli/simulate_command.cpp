@@ -14,6 +14,7 @@ int simulate(const SimulateArgs& a, std::ostream& out, std::ostream& err) {
     Config config = a.config.empty() ? Config{} : loadConfig(a.config);
     if (a.vignetting >= 0) config.sim.vignetting = a.vignetting;
     if (a.stereo_mismatch >= 0) config.sim.stereo_brightness_mismatch = a.stereo_mismatch;
+    if (!std::isnan(a.imu_time_offset_ms)) config.sim.imu_time_offset_ms = a.imu_time_offset_ms;
     if (a.noise != "on" && a.noise != "off") throw InputError("--noise must be on or off");
     sim::SimRequest r;
     r.out_dir = a.out;

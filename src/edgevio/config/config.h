@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "edgevio/camera/rectification_options.h"
+#include "edgevio/doctor/doctor_options.h"
 #include "edgevio/estimator/estimator_options.h"
 #include "edgevio/eval/eval_options.h"
 #include "edgevio/io/dataset_options.h"
@@ -34,6 +35,7 @@ struct Config {
   loop::LoopOptions loop;
   eval::EvalOptions eval;
   sim::SimOptions sim;
+  doctor::DoctorOptions doctor;
 
   /// "" when every option is valid, else the first problem as "section.key: why".
   std::string validate() const;
@@ -54,6 +56,8 @@ void forEachSection(C& config, F&& f) {
   f("loop", "local loop closure between keyframes in the window (METHOD.md §6)", config.loop);
   f("eval", "trajectory evaluation: association, alignment, metrics (METHOD.md §8)", config.eval);
   f("sim", "simulator: motion, scene, camera effects, IMU (edgevio simulate)", config.sim);
+  f("doctor", "checks of a rig's data before a run: what it reads, when a measurement is a finding (edgevio doctor)",
+    config.doctor);
 }
 
 /// Reads a config file over the defaults. Keys absent from the file keep their

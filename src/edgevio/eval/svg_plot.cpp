@@ -22,17 +22,6 @@ std::string fmt(double v) {
   return buf;
 }
 
-std::string escapeXml(const std::string& s) {
-  std::string r;
-  for (char c : s) {
-    if (c == '<') r += "&lt;";
-    else if (c == '>') r += "&gt;";
-    else if (c == '&') r += "&amp;";
-    else if (c == '"') r += "&quot;";
-    else r += c;
-  }
-  return r;
-}
 
 /// A tick step of 1, 2 or 5 times a power of ten giving about `target` ticks.
 double niceStep(double range, int target) {
@@ -100,6 +89,18 @@ void legendEntry(std::ostringstream& o, double x, double y, const char* colour, 
 
 }  // namespace
 
+std::string escapeXml(const std::string& s) {
+  std::string r;
+  for (char c : s) {
+    if (c == '<') r += "&lt;";
+    else if (c == '>') r += "&gt;";
+    else if (c == '&') r += "&amp;";
+    else if (c == '"') r += "&quot;";
+    else r += c;
+  }
+  return r;
+}
+
 std::string svgPlot(const EvalResult& r, const std::string& title) {
   const double W = 1100, H = 590;
   std::ostringstream o;
@@ -157,6 +158,46 @@ std::string svgPlot(const EvalResult& r, const std::string& title) {
   o << "<circle cx='412' cy='" << fmt(H - 18) << "' r='4' fill='#2b8a3e'/><text x='422' y='" << fmt(H - 14)
     << "'>start</text>\n";
   legendEntry(o, 640, H - 18, "#1c7ed6", "ATE RMSE", true);
+  o << "</svg>\n";
+  return o.str();
+}
+
+std::string svgLineChart(const std::string& title, const std::string& xlabel, const std::string& ylabel,
+                         const std::vector<PlotSeries>& series, double marker_x) {
+  const double W = 760, H = 340;
+  double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, ymin = xmin, ymax = -xmin;
+  for (const PlotSeries& s : series)
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      xmin = std::min(xmin, s.x[i]);
+      xmax = std::max(xmax, s.x[i]);
+      ymin = std::min(ymin, s.y[i]);
+      ymax = std::max(ymax, s.y[i]);
+    }
+  if (!(xmax > xmin)) {
+    xmin = std::isfinite(xmin) ? xmin - 0.5 : 0.0;
+    xmax = xmin + 1.0;
+  }
+  if (!(ymax > ymin)) {
+    ymin = std::isfinite(ymin) ? ymin - 0.5 : 0.0;
+    ymax = ymin + 1.0;
+  }
+  const double pad = 0.05 * (ymax - ymin);
+  const Panel p{80, 40, W - 110, H - 110, xmin, xmax, ymin - pad, ymax + pad};
+  std::ostringstream o;
+  o << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' viewBox='0 0 " << W << " "
+    << H << "' font-family='sans-serif' font-size='12'>\n";
+  o << "<rect width='100%' height='100%' fill='#fafafa'/>\n";
+  o << "<text x='20' y='24' font-size='14' font-weight='bold'>" << escapeXml(title) << "</text>\n";
+  axes(o, p, xlabel, ylabel);
+  for (const PlotSeries& s : series) polyline(o, p, s.x, s.y, s.colour.c_str(), 1.5);
+  if (std::isfinite(marker_x) && marker_x >= xmin && marker_x <= xmax)
+    o << "<line x1='" << fmt(p.px(marker_x)) << "' y1='" << fmt(p.y0) << "' x2='" << fmt(p.px(marker_x)) << "' y2='"
+      << fmt(p.y0 + p.h) << "' stroke='#1c7ed6' stroke-dasharray='6,4'/>\n";
+  double lx = 100;
+  for (const PlotSeries& s : series) {
+    legendEntry(o, lx, H - 14, s.colour.c_str(), s.label);
+    lx += 60 + 7.0 * static_cast<double>(s.label.size());
+  }
   o << "</svg>\n";
   return o.str();
 }

@@ -5,7 +5,7 @@ namespace edgevio::io {
 
 /// Reading a dataset (config section `dataset`).
 struct DatasetOptions {
-  double stereo_sync_tolerance_s, imu_gap_warning_s, imu_glitch_gyro_rad_s, imu_glitch_accel_mps2;
+  double stereo_sync_tolerance_s, imu_gap_warning_s, imu_glitch_gyro_rad_s, imu_glitch_accel_mps2, imu_time_offset_ms;
 
   EDGEVIO_OPTIONS(DatasetOptions)
 };
@@ -20,6 +20,10 @@ EDGEVIO_OPTIONS_TABLE(DatasetOptions,
            "(real EuRoC logs: at most 1.2)",
            above(0).orOff()),
     number("imu_glitch_accel_mps2", &S::imu_glitch_accel_mps2, 40.0, "m/s^2",
-           "... or an accelerometer reading this far (real EuRoC logs, landings included: at most 18)", above(0).orOff()))
+           "... or an accelerometer reading this far (real EuRoC logs, landings included: at most 18)", above(0).orOff()),
+    number("imu_time_offset_ms", &S::imu_time_offset_ms, 0.0, "ms",
+           "the IMU's clock minus the cameras' (Kalibr's timeshift_cam_imu in ms; `edgevio doctor` measures it): the IMU's "
+           "stamps are moved back by this when read",
+           closed(-1000, 1000)))
 
 }  // namespace edgevio::io

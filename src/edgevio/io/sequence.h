@@ -74,8 +74,9 @@ struct SequenceSource {
 std::unique_ptr<Sequence> openSequence(const SequenceSource& source, const DatasetOptions& options);
 
 /// Replaces the IMU glitches of a sequence's log (imu/imu_glitches.h, the
-/// thresholds of `options`) and says so in one warning naming `where`.
-void replaceImuGlitches(std::vector<imu::ImuSample>* imu, const DatasetOptions& options, const std::string& where,
+/// thresholds of `options`), saying so in one warning naming `where`, and
+/// moves its stamps onto the cameras' clock (dataset.imu_time_offset_ms).
+void prepareImuLog(std::vector<imu::ImuSample>* imu, const DatasetOptions& options, const std::string& where,
                         std::vector<std::string>* warnings);
 
 /// Pairs left and right image times (both increasing) that lie within

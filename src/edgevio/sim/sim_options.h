@@ -12,7 +12,7 @@ struct SimOptions {
   SceneOptions scene;
   double exposure_gain, image_noise_sigma, vignetting, stereo_brightness_mismatch, exposure_drift_amplitude,
       exposure_drift_period_s, lighting_change_interval_s, lighting_change_magnitude, blur_substep_ms,
-      initial_gyro_bias_sigma, initial_accel_bias_sigma;
+      initial_gyro_bias_sigma, initial_accel_bias_sigma, imu_time_offset_ms;
   int png_compression, threads;
 
   EDGEVIO_OPTIONS(SimOptions)
@@ -49,6 +49,10 @@ EDGEVIO_OPTIONS_TABLE(SimOptions,
            atLeast(0)),
     number("initial_accel_bias_sigma", &S::initial_accel_bias_sigma, 0.05, "m/s^2", "std. dev. of the initial accelerometer bias",
            atLeast(0)),
+    number("imu_time_offset_ms", &S::imu_time_offset_ms, 0.0, "ms",
+           "the IMU's clock minus the cameras': a reading taken at time t is stamped t + this (a rig whose clocks "
+           "disagree; `edgevio doctor` measures it)",
+           closed(-1000, 1000)),
     number("png_compression", &S::png_compression, 1, "-", "zlib level of the PNG files (speed against size)", closed(0, 9)),
     number("threads", &S::threads, 2, "-", "rendering threads (the output is the same for any value)", closed(1, 64)))
 

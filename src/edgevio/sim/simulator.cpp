@@ -181,7 +181,10 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   io::writeEurocCalibration(mav0.string(), rig);
   const auto frame_step = static_cast<std::int64_t>(std::llround(1e9 / rig.camera_rate_hz)) * (req.skip + 1);
   FaultInjector faults(req.faults, begin_ns, toSeconds(frame_step), req.seed);
-  io::writeImuCsv((mav0 / "imu0" / "data.csv").string(), faults.recordedImu(imu.samples));
+  std::vector<imu::ImuSample> recorded_imu = faults.recordedImu(imu.samples);
+  const auto clock_offset_ns = static_cast<std::int64_t>(std::llround(options.imu_time_offset_ms * 1e6));
+  for (imu::ImuSample& s : recorded_imu) s.t_ns += clock_offset_ns;
+  io::writeImuCsv((mav0 / "imu0" / "data.csv").string(), recorded_imu);
   io::Trajectory gt;
   for (std::size_t i = 0; i < imu.samples.size(); ++i) {
     const KinematicState s = spline.evaluate(imu.samples[i].t_ns);
