@@ -12,7 +12,9 @@
 #include "common/test_support.h"
 #include "edgevio/config/config.h"
 #include "edgevio/doctor/doctor.h"
+#include "edgevio/io/bag_export.h"
 #include "edgevio/io/calibration_io.h"
+#include "edgevio/io/euroc_dataset.h"
 #include "edgevio/io/sequence.h"
 
 namespace edgevio::doctor {
@@ -53,9 +55,9 @@ std::string withCalibration(const std::string& dataset, const std::string& out, 
   return out;
 }
 
-DoctorReport diagnoseFolder(const std::string& path) {
+DoctorReport diagnoseFolder(const std::string& path, const std::string& calib = "") {
   const Config config;
-  const std::unique_ptr<io::Sequence> seq = io::openSequence({path, "", {}}, config.dataset);
+  const std::unique_ptr<io::Sequence> seq = io::openSequence({path, calib, {}}, config.dataset);
   return diagnose(*seq, config);
 }
 
@@ -84,6 +86,19 @@ TEST(Doctor, FindsTheClockOffsetOnARender) {
                                        "\"gyro_bias_rad_s\"", "\"findings\": [", "\"severity\": \"error\""});
   const std::string page = htmlPage(r);
   EXPECT_NE(page.find("<svg"), std::string::npos);
+}
+
+TEST(Doctor, ReadsABagAsTheFolderItWasMadeFrom) {
+  TempDir dir;
+  io::EurocDataset folder(render().dataset, io::DatasetOptions{});
+  const std::string bag = dir.file("render.bag");
+  io::exportBag(folder, bag, io::BagExportOptions{});
+  const DoctorReport a = diagnoseFolder(render().dataset), b = diagnoseFolder(bag, render().dataset);
+  EXPECT_EQ(a.images.frames, b.images.frames);
+  EXPECT_EQ(a.motion.time_offset_ms, b.motion.time_offset_ms);
+  EXPECT_EQ(a.motion.rotation_error_deg, b.motion.rotation_error_deg);
+  EXPECT_EQ(a.stereo.vertical_disparity_px, b.stereo.vertical_disparity_px);
+  EXPECT_EQ(a.findings.size(), b.findings.size());
 }
 
 TEST(Doctor, FindsACameraImuRotationTwoDegreesOff) {
