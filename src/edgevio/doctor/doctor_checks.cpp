@@ -193,16 +193,24 @@ MotionCheck checkMotion(const std::vector<FrameRotation>& rotations, const std::
   for (std::size_t j = 1; j < gyro_at.size(); ++j)
     if (magnitudeCost(j) < magnitudeCost(best)) best = j;
 
-  // 2. Mis-tracked pairs (rate residual over 3x the median with the
-  // rotation and bias fitted there) are dropped. 3. At every offset, the
-  // rotation and bias that fit best, and the mean squared residual left.
-  // Fitting them anew at each offset keeps the curve's minimum from leaning
-  // towards the offset they were fitted at.
-  HandEye h = handEye(camera, gyro_at[best], use);
+  // 2. Mis-tracked pairs are dropped: an alignment that passed its self
+  // check in a wrong basin gives a rate far off the gyroscope's, and a few
+  // of those would turn a least-squares rotation by degrees. First by the
+  // rates' magnitudes (no rotation needed), then twice by the residual of
+  // the rotation and bias fitted to the pairs kept; each time a pair is kept
+  // within 3x the median of all pairs' residuals.
+  const auto keepWithin3Medians = [&](const std::vector<double>& residual) {
+    const double limit = 3.0 * median(residual);
+    for (std::size_t k = 0; k < pairs.size(); ++k) use[k] = residual[k] <= limit;
+  };
   std::vector<double> residual(pairs.size());
-  for (std::size_t k = 0; k < pairs.size(); ++k) residual[k] = (gyro_at[best][k] - h.R * camera[k] - h.b).norm();
-  const double limit = 3.0 * median(residual);
-  for (std::size_t k = 0; k < pairs.size(); ++k) use[k] = residual[k] <= limit;
+  for (std::size_t k = 0; k < pairs.size(); ++k) residual[k] = std::abs(gyro_at[best][k].norm() - camera[k].norm());
+  keepWithin3Medians(residual);
+  for (int round = 0; round < 2; ++round) {
+    const HandEye fit = handEye(camera, gyro_at[best], use);
+    for (std::size_t k = 0; k < pairs.size(); ++k) residual[k] = (gyro_at[best][k] - fit.R * camera[k] - fit.b).norm();
+    keepWithin3Medians(residual);
+  }
   const auto meanSquaredResidual = [&](const std::vector<Vec3>& gyro, const HandEye& fit) {
     double c = 0, n = 0;
     for (std::size_t k = 0; k < pairs.size(); ++k)
@@ -238,7 +246,7 @@ MotionCheck checkMotion(const std::vector<FrameRotation>& rotations, const std::
   // 4. Rotation and bias at the refined offset.
   std::vector<Vec3> gyro(pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) gyro[k] = gyroRate(imu, pairs[k], offsetNs(offset), max_gap_s).value_or(gyro_at[best][k]);
-  h = handEye(camera, gyro, use);
+  const HandEye h = handEye(camera, gyro, use);
   m.R_b_c = geometry::SO3::fromMatrix(h.R);
   m.gyro_bias = h.b;
   m.rotation_error_deg = (R_b_c_calibrated.inverse() * m.R_b_c).log().norm() * kRadToDeg;

@@ -186,7 +186,7 @@ void writeText(std::ostream& out, const DoctorReport& r) {
   out << format("  imu      %.0f readings at %.1f Hz, %.0f gaps, standstill %.1f s\n", static_cast<double>(r.imu.samples),
                 r.imu.rate_hz, r.imu.gaps, r.imu.standstill_s);
   if (r.motion.observable)
-    out << format("  motion   time offset %.1f +- %.1f ms (IMU minus camera), camera-IMU rotation %.2f deg from the "
+    out << format("  motion   time offset %.2f +- %.2f ms (IMU minus camera), camera-IMU rotation %.2f deg from the "
                   "calibration's\n",
                   r.motion.time_offset_ms, r.motion.time_offset_sigma_ms, r.motion.rotation_error_deg);
   else
