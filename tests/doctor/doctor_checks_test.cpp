@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include <cmath>
 #include <random>
 
@@ -141,6 +143,39 @@ TEST(CheckMotion, RotationAboutOneAxisIsNotObservable) {
   EXPECT_FALSE(m.observable);
   EXPECT_GT(m.rotation_rate_std_rad_s[0], 0.3);  // 0.5 / sqrt(2) about z
   EXPECT_LT(m.rotation_rate_std_rad_s[1], 1e-6);
+}
+
+TEST(EdgeSharpness, IsTheGreyStepPerPixelAcrossAnEdge) {
+  // A sharp step of 100 grey levels: the central difference across it is
+  // 100 over 2 px; a ramp of 25 per pixel: 25.
+  cv::Mat sharp(32, 64, CV_8UC1, cv::Scalar(50)), ramp(32, 64, CV_8UC1, cv::Scalar(50));
+  sharp.colRange(32, 64).setTo(150);
+  for (int x = 30; x < 64; ++x) ramp.col(x).setTo(std::min(150, 50 + 25 * (x - 30)));
+  cv::Mat edges(32, 64, CV_8UC1, cv::Scalar(0));
+  edges(cv::Rect(31, 4, 1, 24)).setTo(255);
+  EXPECT_NEAR(edgeSharpness(sharp, edges), 50.0, 1e-4);
+  edges.setTo(0);
+  edges(cv::Rect(32, 4, 1, 24)).setTo(255);
+  EXPECT_NEAR(edgeSharpness(ramp, edges), 25.0, 1e-4);
+  EXPECT_EQ(edgeSharpness(ramp, cv::Mat::zeros(32, 64, CV_8UC1)), 0.0);
+}
+
+TEST(VerticalDisparities, MeasureASubPixelRowShift) {
+  // A smooth random texture; the right image is it 20 px to the left and
+  // dy px down (bilinear).
+  cv::Mat noise(240, 320, CV_8UC1), left;
+  cv::randu(noise, 0, 256);
+  cv::GaussianBlur(noise, left, cv::Size(0, 0), 2.0);
+  cv::normalize(left, left, 0, 255, cv::NORM_MINMAX);
+  for (double dy : {0.0, 0.4, -1.3}) {
+    const cv::Mat M = (cv::Mat_<double>(2, 3) << 1, 0, -20, 0, 1, dy);
+    cv::Mat right;
+    cv::warpAffine(left, right, M, left.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+    const std::vector<double> d = verticalDisparities(left, right, 64);
+    ASSERT_GT(d.size(), 50u) << "dy " << dy;
+    // The parabola's pixel locking: up to 0.006 px measured at 0, 0.4, -1.3.
+    EXPECT_NEAR(median(d), dy, 0.02) << "dy " << dy;
+  }
 }
 
 DoctorReport healthyReport() {

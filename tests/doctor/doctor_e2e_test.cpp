@@ -40,6 +40,9 @@ struct Render {
     o.imu_time_offset_ms = kClockOffsetMs;
     sim::SimRequest r = test::scenarioRequest(dataset, "aggressive", 1.0, 10.0, 4);
     r.faults.push_back(sim::parseFault("drop_left:at=2,every=1"));
+    // 12 frames overexposed (6 %: a finding), 4 black (2 %: counted, no finding).
+    r.faults.push_back(sim::parseFault("saturated:at=4.02,for=0.6,size=6"));
+    r.faults.push_back(sim::parseFault("black:at=6.52,for=0.2"));
     sim::simulate(r, o);
   }
 };
@@ -80,9 +83,13 @@ TEST(Doctor, FindsTheClockOffsetOnARender) {
   EXPECT_EQ(r.images.frames, 192u);  // 201 less the 9 drops
   EXPECT_EQ(r.images.missing_frames, 8);  // the ninth drop is the last frame: nothing after it
   EXPECT_TRUE(hasFinding(r, Severity::kInfo, "8 frames missing"));
-  // Without the IMU a frame of the fastest rotation may fail its self check;
-  // fewer than the doctor's own finding threshold (5 % of the frames).
-  EXPECT_LT(static_cast<double>(r.motion.failed_alignments), 0.05 * 192) << r.motion.failed_alignments;
+  // The image faults, counted and (over 5 % of the frames) a finding.
+  EXPECT_EQ(r.images.overexposed_frames, 12);
+  EXPECT_EQ(r.images.underexposed_frames, 4);
+  EXPECT_TRUE(hasFinding(r, Severity::kWarning, "are overexposed"));
+  EXPECT_FALSE(hasFinding(r, Severity::kWarning, "are underexposed"));
+  EXPECT_GE(r.images.exposure_changes, 4);  // into and out of each fault window
+  EXPECT_GE(r.motion.failed_alignments, 4u);  // a black frame cannot be aligned
   // Four aggressive renders (with and without drops and offset) gave the
   // offset within 0.02 ms and the rotation within 0.02 deg: 10x margins.
   EXPECT_NEAR(r.motion.time_offset_ms, kClockOffsetMs, 0.2);

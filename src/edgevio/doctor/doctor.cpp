@@ -38,26 +38,27 @@ void checkTiming(const io::Sequence& seq, ImageCheck* c) {
     if (dt > 1.5 * period) c->missing_frames += static_cast<int>(std::lround(dt / period)) - 1;
 }
 
-/// Mean grey level and sharpness (mean gradient magnitude on the level-0
-/// edges: blur spreads an edge's step over more pixels and lowers it).
+/// Mean grey level, edge sharpness, clipping.
 void imageStatistics(const cv::Mat& raw, const vision::EdgeLevel& level0, const DoctorOptions& o, double t_s, ImageCheck* c) {
   c->t_s.push_back(t_s);
   c->brightness.push_back(cv::mean(raw)[0]);
-  cv::Mat gx, gy, magnitude;
-  cv::Sobel(level0.image, gx, CV_32F, 1, 0, 3);
-  cv::Sobel(level0.image, gy, CV_32F, 0, 1, 3);
-  cv::magnitude(gx, gy, magnitude);
-  c->sharpness.push_back(level0.edge_count > 0 ? cv::mean(magnitude, level0.edges)[0] / 8.0 : 0.0);
+  c->sharpness.push_back(edgeSharpness(level0.image, level0.edges));
   const double pixels = static_cast<double>(raw.total());
   if (cv::countNonZero(raw >= 255) > o.clipped_pixels * pixels) ++c->overexposed_frames;
   if (cv::countNonZero(raw <= 5) > o.clipped_pixels * pixels) ++c->underexposed_frames;
 }
 
-/// Vertical disparities of corners of the rectified left image matched in
-/// the right one: normalised cross-correlation of an 11x11 patch over the
-/// disparity range and +-kRows rows, sub-pixel by a parabola across rows.
-/// Kept: correlation over 0.9 and clearly above the best match elsewhere
-/// (repetitive texture matches twice).
+}  // namespace
+
+double edgeSharpness(const cv::Mat& image, const cv::Mat& edges) {
+  if (cv::countNonZero(edges) == 0) return 0.0;
+  cv::Mat gx, gy, magnitude;
+  cv::Sobel(image, gx, CV_32F, 1, 0, 3);
+  cv::Sobel(image, gy, CV_32F, 0, 1, 3);
+  cv::magnitude(gx, gy, magnitude);
+  return cv::mean(magnitude, edges)[0] / 8.0;  // a 3x3 Sobel is 8x the grey step per pixel
+}
+
 std::vector<double> verticalDisparities(const cv::Mat& left, const cv::Mat& right, int max_disparity) {
   constexpr int kRows = 6, kHalf = 5;
   std::vector<cv::Point2f> corners;
@@ -88,7 +89,6 @@ std::vector<double> verticalDisparities(const cv::Mat& left, const cv::Mat& righ
   return dy;
 }
 
-}  // namespace
 
 DoctorReport diagnose(io::Sequence& seq, const Config& config, const DoctorProgress& progress) {
   const DoctorOptions& o = config.doctor;

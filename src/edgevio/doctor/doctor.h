@@ -7,6 +7,7 @@
 // and a fix.
 #include <cstdint>
 #include <functional>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,16 @@ std::vector<Finding> findFindings(const DoctorReport& report, const camera::Ster
 using DoctorProgress = std::function<void(std::size_t, std::size_t)>;
 /// Reads the sequence's first doctor.max_duration_s and runs every check.
 DoctorReport diagnose(io::Sequence& sequence, const Config& config, const DoctorProgress& progress = {});
+
+/// Mean grey-level step per pixel across the edge pixels (`edges` non-zero)
+/// of an 8-bit image: blur spreads an edge's step over more pixels.
+double edgeSharpness(const cv::Mat& image, const cv::Mat& edges);
+/// Vertical disparities (right y - left y) of corners of a rectified left
+/// image matched in the right one, within `max_disparity` px to the left
+/// and 6 rows up or down: normalised cross-correlation of an 11x11 patch,
+/// sub-pixel by a parabola across rows; kept when the correlation is over
+/// 0.9 and clearly above the best match elsewhere (repetitive texture).
+std::vector<double> verticalDisparities(const cv::Mat& left, const cv::Mat& right, int max_disparity);
 
 /// The median of `values` (the upper middle one of an even count); 0 for none.
 double median(std::vector<double> values);
