@@ -155,5 +155,28 @@ TEST(LossMonitor, AStepNoRigCouldAccelerateToIsLostUntilThePosesAreSmoothAgain) 
     for (const FrameRecord& x : none) EXPECT_EQ(x.status, TrackingStatus::kOk) << x.t_ns;
 }
 
+TEST(LossMonitor, AnEstimateRunningAwayAtASteadySpeedIsLost) {
+  // Frames 3-6 move 6 m per 50 ms (120 m/s, the run-away of a 2 s IMU gap
+  // in fast flight): no acceleration after the first step, yet lost until
+  // a plausible step.
+  const auto run = [](double speed_mps) {
+    tracking::TrackingOptions o = lossOptions(10, 2.0, 3, 0.0);
+    o.lost_speed_mps = speed_mps;
+    LossMonitor m(true, o);
+    std::vector<FrameRecord> r;
+    for (int k = 0; k <= 8; ++k) {
+      r.push_back(frame(k, true));
+      r.back().implied_speed_mps = k >= 3 && k <= 6 ? 120.0 : 2.0;
+    }
+    for (FrameRecord& x : r) m.update(&x);
+    return r;
+  };
+  const std::vector<FrameRecord> r = run(100.0);
+  for (int k = 0; k <= 8; ++k) EXPECT_EQ(r[k].status == TrackingStatus::kLost, k >= 3 && k <= 6) << k;
+  EXPECT_EQ(r[3].lost_reason, "the pose's step implies a speed of 120 m/s, over 100");
+  for (const auto& none : {run(0.0), run(150.0)})  // off, or a bound above the speed
+    for (const FrameRecord& x : none) EXPECT_EQ(x.status, TrackingStatus::kOk) << x.t_ns;
+}
+
 }  // namespace
 }  // namespace edgevio::pipeline

@@ -53,6 +53,8 @@ constexpr FrameColumn kColumns[] = {
       {"implied_accel_mps2", "m/s^2",
        "the acceleration the estimate implies: the second difference of this and the previous two frames' positions",
        [](const R& r) { return real(r.implied_accel_mps2); }, 2},
+      {"implied_speed_mps", "m/s", "the speed the estimate implies: this and the previous frame's positions apart over their time",
+       [](const R& r) { return real(r.implied_speed_mps); }, 2},
       {"reference_timestamp_ns", "ns", "the keyframe's time: the tracking link's reference (-1: none)",
        [](const R& r) { return integer(r.reference_t_ns); }},
       {"link_tx", "m", "the tracking link as the body's motion T_bn_br (= T_w_bn^-1 T_w_br of a ground truth): translation x",

@@ -84,6 +84,8 @@ struct FrameRecord {
   /// |second difference| of the last three poses' positions [m/s^2] (NaN
   /// before the third frame): what the estimate claims the body accelerated.
   double implied_accel_mps2 = std::numeric_limits<double>::quiet_NaN();
+  /// |first difference| of the last two poses' positions [m/s] (NaN on a first frame).
+  double implied_speed_mps = std::numeric_limits<double>::quiet_NaN();
   std::int64_t lost_since_ns = -1;  ///< where a loss this frame declared began (its first symptom); -1: none began here
   std::string lost_reason;          ///< why, when a loss began here
   geometry::SE3 T_w_b;                ///< the causal pose estimate of the frame

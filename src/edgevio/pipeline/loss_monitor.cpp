@@ -11,7 +11,9 @@ void LossMonitor::update(FrameRecord* r) {
   // (without a gyroscope reading the disagreement is NaN and compares false)
   const bool contradicted = r->aligned && gyro_contradictions_ > 0 && gyro_disagreement_deg_ > 0 &&
                             r->gyro_disagreement_deg > gyro_disagreement_deg_;
-  const bool implausible = accel_mps2_ > 0 && r->implied_accel_mps2 > accel_mps2_;
+  // (NaN, before a second or third frame, compares false)
+  const bool too_fast = speed_mps_ > 0 && r->implied_speed_mps > speed_mps_;
+  const bool implausible = (accel_mps2_ > 0 && r->implied_accel_mps2 > accel_mps2_) || too_fast;
   if (r->aligned) {
     recent_.push_back({r->t_ns, contradicted, failed});
     if (recent_.size() > static_cast<std::size_t>(lost_after_)) recent_.pop_front();
@@ -47,9 +49,12 @@ void LossMonitor::update(FrameRecord* r) {
     begin(Cause::kFailures, first_failure_ns_, std::to_string(failures_) + " consecutive self-check failures");
   } else if (lost_ == Cause::kNone && implausible) {
     char why[160];
-    std::snprintf(why, sizeof why, "the pose's step implies an acceleration of %.0f m/s^2, over %.0f", r->implied_accel_mps2,
-                  accel_mps2_);
-    begin(Cause::kAcceleration, r->t_ns, why);
+    if (too_fast)
+      std::snprintf(why, sizeof why, "the pose's step implies a speed of %.0f m/s, over %.0f", r->implied_speed_mps, speed_mps_);
+    else
+      std::snprintf(why, sizeof why, "the pose's step implies an acceleration of %.0f m/s^2, over %.0f", r->implied_accel_mps2,
+                    accel_mps2_);
+    begin(Cause::kImplausibleMotion, r->t_ns, why);
   } else if (lost_ == Cause::kNone && gyro_contradictions_ > 0 && r->aligned && !recent_.empty() && suspect(recent_.back()) &&
              suspects >= gyro_contradictions_) {
     const auto first = std::find_if(recent_.begin(), recent_.end(), suspect);

@@ -22,8 +22,9 @@
 //    the IMU modes, which carry the pose through, it counts as a self-check
 //    failure;
 //  - a pose whose step implies an acceleration beyond tracking.lost_accel_mps2
-//    (the alignment went to another basin, or the estimate exploded); such a
-//    loss ends at a tracked frame with a plausible one again;
+//    or a speed beyond tracking.lost_speed_mps (the alignment went to another
+//    basin, or the estimate exploded or runs away); such a loss ends at a
+//    tracked frame with a plausible step again;
 //  - a non-finite pose.
 #include <cstdint>
 #include <deque>
@@ -36,19 +37,20 @@ namespace edgevio::pipeline {
 class LossMonitor {
  public:
   /// The tracking.lost_* options; lost_gyro_contradictions or
-  /// lost_gyro_disagreement_deg 0: no gyroscope signal; lost_accel_mps2 0: no acceleration signal.
+  /// lost_gyro_disagreement_deg 0: no gyroscope signal; lost_accel_mps2 or lost_speed_mps 0: no such signal.
   LossMonitor(bool imu, const tracking::TrackingOptions& o)
       : imu_(imu),
         lost_after_(o.lost_after_failures),
         gyro_disagreement_deg_(o.lost_gyro_disagreement_deg),
         gyro_contradictions_(o.lost_gyro_contradictions),
-        accel_mps2_(o.lost_accel_mps2) {}
+        accel_mps2_(o.lost_accel_mps2),
+        speed_mps_(o.lost_speed_mps) {}
 
   /// Sets r->status, and r->lost_since_ns and r->lost_reason where a loss begins.
   void update(FrameRecord* r);
 
  private:
-  enum class Cause { kNone, kFailures, kEvidence, kAcceleration };
+  enum class Cause { kNone, kFailures, kEvidence, kImplausibleMotion };
   struct Recent {
     std::int64_t t_ns;
     bool contradicted, failed;
@@ -58,7 +60,7 @@ class LossMonitor {
   int lost_after_;
   double gyro_disagreement_deg_;
   int gyro_contradictions_;
-  double accel_mps2_;
+  double accel_mps2_, speed_mps_;
   int failures_ = 0;  ///< consecutive self-check failures
   std::int64_t first_failure_ns_ = -1;
   /// The last lost_after_ aligned frames: their times, whether the gyroscope contradicted them and whether they failed.

@@ -65,6 +65,8 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   const Vec3 b_g = r.state ? r.state->b_g : init_.gyro_bias;
   if (const auto dR = gyroRotation(t_prev_, r.t_ns, b_g))
     r.gyro_disagreement_deg = (dR->inverse() * T_w_b_last_.so3().inverse() * r.T_w_b.so3()).log().norm() * kRadToDeg;
+  if (t_prev_ >= 0 && t_prev_ < r.t_ns)
+    r.implied_speed_mps = (r.T_w_b.translation() - T_w_b_last_.translation()).norm() / toSeconds(r.t_ns - t_prev_);
   if (t_before_last_ >= 0 && t_before_last_ < t_prev_ && t_prev_ < r.t_ns) {
     const double dt1 = toSeconds(t_prev_ - t_before_last_), dt2 = toSeconds(r.t_ns - t_prev_);
     const Vec3 v1 = (T_w_b_last_.translation() - T_w_b_before_last_.translation()) / dt1;

@@ -14,7 +14,7 @@ struct TrackingOptions {
   int lost_after_failures;
   double lost_gyro_disagreement_deg;
   int lost_gyro_contradictions;
-  double lost_accel_mps2;
+  double lost_accel_mps2, lost_speed_mps;
   double static_init_window_s, static_chunk_s, static_accel_std_max, static_gyro_std_max;
 
   EDGEVIO_OPTIONS(TrackingOptions)
@@ -57,6 +57,10 @@ EDGEVIO_OPTIONS_TABLE(TrackingOptions,
     number("lost_accel_mps2", &S::lost_accel_mps2, 1000.0, "m/s^2",
            "a pose whose step from the previous one implies an acceleration beyond this (100 g: no rig's motion, an "
            "alignment gone to another basin) is lost, until a frame tracks with a plausible one",
+           above(0).orOff()),
+    number("lost_speed_mps", &S::lost_speed_mps, 100.0, "m/s",
+           "... or a step implying a speed beyond this (racing drones reach 40-50 m/s; an estimate running away at a steady "
+           "speed has no large acceleration)",
            above(0).orOff()),
     number("static_init_window_s", &S::static_init_window_s, 1.0, "s", "IMU window at the start used for static initialisation",
            above(0)),
