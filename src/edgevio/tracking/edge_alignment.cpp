@@ -179,21 +179,29 @@ struct LevelInput {
   int l;
 };
 
+/// A pose and the sums of its points at one level.
+struct LevelFit {
+  SE3 T;
+  LevelStats stats;
+};
+
 /// Gauss-Newton on one level from T (eqs 9-11), with the rotation prior;
-/// returns the best iterate by mean distance.
-SE3 alignLevel(const LevelInput& in, SE3 T, const AlignmentOptions& o, const RotationPrior* prior, int* iterations) {
-  SE3 best = T;
+/// returns the best iterate by mean distance. Each pose is evaluated once:
+/// `s` always holds the sums at the current T.
+LevelFit alignLevel(const LevelInput& in, SE3 T, const AlignmentOptions& o, const RotationPrior* prior, int* iterations) {
+  const auto evaluate = [&](const SE3& pose) { return accumulate(in.points, in.normals, pose, in.level, o, in.l == 0); };
+  LevelStats s = evaluate(T);
+  LevelFit best{T, s};
   double best_mean = std::numeric_limits<double>::infinity();
   int stalled = 0;
   for (int it = 0; it < o.max_iterations_per_level; ++it) {
-    const LevelStats s = accumulate(in.points, in.normals, T, in.level, o, in.l == 0);
     if (s.visible < o.min_points) break;
     const double mean = s.sum_r / s.visible;
     // Near the optimum points switch between neighbouring edges, so steps
     // need not shrink; progress is judged on the mean distance instead.
     if (mean < best_mean - kMinProgressPx) {
       best_mean = mean;
-      best = T;
+      best = {T, s};
       stalled = 0;
     } else if (++stalled >= o.max_stalled_iterations) {
       break;
@@ -212,17 +220,17 @@ SE3 alignLevel(const LevelInput& in, SE3 T, const AlignmentOptions& o, const Rot
     const Vec6 xi = ldlt.solve(-g);
     if (!xi.allFinite()) break;
     T = T * SE3::exp(xi);
+    s = evaluate(T);
     if (xi.norm() < o.min_step) break;
   }
-  // The last step is evaluated too: it may be the best iterate.
-  const LevelStats last = accumulate(in.points, in.normals, T, in.level, o, in.l == 0);
-  return last.visible < o.min_points || last.sum_r / last.visible > best_mean ? best : T;
+  // The last step counts too: it may be the best iterate.
+  if (s.visible < o.min_points || s.sum_r / s.visible > best_mean) return best;
+  return {T, s};
 }
 
 /// The self check and the covariance (paper §5.3, §6.3) of T at level `finest`.
-void evaluateFit(const LevelInput& in, const SE3& T, const AlignmentOptions& o, AlignmentResult* res) {
-  const int finest = in.l;
-  const LevelStats s = accumulate(in.points, in.normals, T, in.level, o, finest == 0);
+/// `s`: the sums of the points at T on that level.
+void evaluateFit(int finest, const LevelStats& s, const AlignmentOptions& o, AlignmentResult* res) {
   res->points_used = s.visible;
   res->visible_ratio = s.considered == 0 ? 0.0 : static_cast<double>(s.visible) / static_cast<double>(s.considered);
   res->mean_distance_px = s.visible > 0 ? s.sum_r / s.visible : std::numeric_limits<double>::infinity();
@@ -258,14 +266,24 @@ AlignmentResult alignEdges(const vision::KeyframeDepth& reference, const vision:
     const auto k = static_cast<std::size_t>(l);
     return LevelInput{ref[k], k < reference.normals.size() ? &reference.normals[k] : nullptr, cur.levels[k], l};
   };
-  SE3 T = T_init;
+  LevelFit fit{T_init, {}};
+  int fit_level = -1;  // the level fit.stats belongs to
   int levels = static_cast<int>(std::min(ref.size(), cur.levels.size()));
   if (coarsest >= 0) levels = std::min(levels, coarsest + 1);
   finest = std::clamp(finest, 0, std::max(0, levels - 1));
-  for (int l = levels - 1; l >= finest; --l)
-    if (static_cast<int>(ref[static_cast<std::size_t>(l)].size()) >= o.min_points) T = alignLevel(input(l), T, o, prior, &res.iterations);
-  if (static_cast<int>(ref.size()) > finest && static_cast<int>(cur.levels.size()) > finest) evaluateFit(input(finest), T, o, &res);
-  res.T_nr = T;
+  for (int l = levels - 1; l >= finest; --l) {
+    if (static_cast<int>(ref[static_cast<std::size_t>(l)].size()) < o.min_points) continue;
+    fit = alignLevel(input(l), fit.T, o, prior, &res.iterations);
+    fit_level = l;
+  }
+  if (static_cast<int>(ref.size()) > finest && static_cast<int>(cur.levels.size()) > finest) {
+    if (fit_level != finest) {
+      const LevelInput in = input(finest);
+      fit.stats = accumulate(in.points, in.normals, fit.T, in.level, o, finest == 0);
+    }
+    evaluateFit(finest, fit.stats, o, &res);
+  }
+  res.T_nr = fit.T;
   res.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }
