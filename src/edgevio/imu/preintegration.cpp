@@ -10,7 +10,8 @@ namespace edgevio::imu {
 using geometry::hat;
 using geometry::SO3;
 
-Preintegration::Preintegration(const Vec3& b_a, const Vec3& b_g, const ImuNoise& n) : b_a_(b_a), b_g_(b_g) {
+Preintegration::Preintegration(const Vec3& b_a, const Vec3& b_g, const ImuNoise& n, Propagation propagation)
+    : b_a_(b_a), b_g_(b_g), propagation_(propagation) {
   // Continuous densities σ [unit/√Hz]; the discrete variances σ²/δt (white)
   // and σ²·δt (random walk) are formed in propagate() with each step's δt.
   Q_.block<3, 3>(0, 0) = Mat3::Identity() * n.accel_noise_density * n.accel_noise_density;
@@ -21,7 +22,7 @@ Preintegration::Preintegration(const Vec3& b_a, const Vec3& b_g, const ImuNoise&
 
 void Preintegration::integrate(double dt, const Vec3& acc0, const Vec3& gyr0, const Vec3& acc1, const Vec3& gyr1) {
   const Reading m{dt, acc0, gyr0, acc1, gyr1};
-  readings_.push_back(m);
+  if (propagation_ == Propagation::kFull) readings_.push_back(m);
   propagate(m);
 }
 
@@ -43,9 +44,17 @@ void Preintegration::propagate(const Reading& m) {
   const SO3 gamma_next = gamma_ * dR;
   const Vec3 a0 = gamma_ * (m.acc0 - b_a_), a1 = gamma_next * (m.acc1 - b_a_);
   const Vec3 a_mid = 0.5 * (a0 + a1);
+  if (propagation_ == Propagation::kFull) propagateCovariance(m, w, dR);
+  alpha_ += beta_ * dt + 0.5 * a_mid * dt * dt;
+  beta_ += a_mid * dt;
+  gamma_ = gamma_next;
+  dt_sum_ += dt;
+}
+
+void Preintegration::propagateCovariance(const Reading& m, const Vec3& w, const SO3& dR) {
+  const double dt = m.dt;
   const Mat3 R = gamma_.matrix();
   const Vec3 a_body = 0.5 * (m.acc0 + m.acc1) - b_a_;  // ã in the body frame of step k
-
   // Error-state transition (Forster et al. 2017, eqs 58-62, with this step's
   // rotation R = γ_k and midpoint readings):
   //   δα' = δα + δβ δt − ½R hat(ã) δt² δθ − ½R δt² δb_a + ½R δt² n_a
@@ -71,11 +80,6 @@ void Preintegration::propagate(const Reading& m) {
   const Eigen::Matrix<double, 12, 12> Qd = Q_ / dt;
   P_ = F * P_ * F.transpose() + G * Qd * G.transpose();
   J_ = F * J_;
-
-  alpha_ += beta_ * dt + 0.5 * a_mid * dt * dt;
-  beta_ += a_mid * dt;
-  gamma_ = gamma_next;
-  dt_sum_ += dt;
 }
 
 Vec15 Preintegration::residual(const NavState& i, const NavState& j, Mat15* J_i, Mat15* J_j) const {

@@ -36,11 +36,17 @@ struct NavState {
   Vec3 b_a = Vec3::Zero(), b_g = Vec3::Zero();
 };
 
+/// What a preintegration carries: the window needs the deltas' covariance and
+/// bias Jacobians (and the readings, to integrate again with new biases); a
+/// prediction from a state with these very biases needs the deltas alone, at
+/// a twentieth of the cost.
+enum class Propagation { kFull, kDeltasOnly };
+
 class Preintegration {
  public:
   /// Biases are the linearisation point; `noise` holds the densities the
   /// covariance is propagated with (the estimator passes them inflated).
-  Preintegration(const Vec3& b_a, const Vec3& b_g, const ImuNoise& noise);
+  Preintegration(const Vec3& b_a, const Vec3& b_g, const ImuNoise& noise, Propagation propagation = Propagation::kFull);
 
   /// Adds the interval between two consecutive IMU readings (dt in seconds).
   void integrate(double dt, const Vec3& acc0, const Vec3& gyr0, const Vec3& acc1, const Vec3& gyr1);
@@ -71,8 +77,11 @@ class Preintegration {
     Vec3 acc0, gyr0, acc1, gyr1;
   };
   void propagate(const Reading& m);
+  /// P and J through one step (before γ moves on): w the step's rate, dR its rotation.
+  void propagateCovariance(const Reading& m, const Vec3& w, const geometry::SO3& dR);
 
   Vec3 b_a_, b_g_;
+  Propagation propagation_;
   Eigen::Matrix<double, 12, 12> Q_ = Eigen::Matrix<double, 12, 12>::Zero();
   double dt_sum_ = 0.0;
   Vec3 alpha_ = Vec3::Zero(), beta_ = Vec3::Zero();
