@@ -153,6 +153,7 @@ RepeatedRun runTwice(Mode mode, const TempDir& out) {
   run(request(simulated().dataset, again.path(), mode), Config{});
   EXPECT_FALSE(r.summary.failed) << r.summary.failure;
   EXPECT_EQ(test::readFile(out.file("trajectory.csv")), test::readFile(again.file("trajectory.csv"))) << "not bit-for-bit repeatable";
+  EXPECT_EQ(test::readFile(out.file("trajectory_imu_rate_tum.txt")), test::readFile(again.file("trajectory_imu_rate_tum.txt")));
   r.eval = eval::evaluate(io::readTrajectory(simulated().dataset + "/mav0/state_groundtruth_estimate0/data.csv"),
                           io::readTrajectory(out.file("trajectory_tum.txt")), eval::EvalOptions{});
   std::printf("4 s figure8 render, %s: ATE %.4f m (se3), ARE %.4f deg/m, %.4f m/m, %zu keyframes\n", modeName(mode).c_str(),
@@ -249,6 +250,33 @@ TEST(Run, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
   std::size_t translation_rows = 0;
   for (std::size_t at = 0; (at = rows.find(",translation,", at)) != std::string::npos; ++at) ++translation_rows;
   EXPECT_NE(summary.find("\"translation_check_realignments\": " + std::to_string(translation_rows)), std::string::npos);
+
+  // The IMU-rate poses: one for every reading after the first frame up to the last.
+  const io::Trajectory frames = io::readTrajectory(a.file("trajectory_tum.txt"));
+  const io::Trajectory imu_rate = io::readTrajectory(a.file("trajectory_imu_rate_tum.txt"));
+  std::vector<std::string> warnings;
+  const auto readings = io::readImuCsv(simulated().dataset + "/mav0/imu0/data.csv", 0.05, &warnings);
+  const auto between = std::count_if(readings.begin(), readings.end(), [&](const imu::ImuSample& m) {
+    return m.t_ns > frames.front().t_ns && m.t_ns <= frames.back().t_ns;
+  });
+  EXPECT_EQ(imu_rate.size(), static_cast<std::size_t>(between));
+  EXPECT_EQ(s.imu_rate_poses, imu_rate.size());
+  // Each is a frame's state propagated for at most one frame interval (Δt =
+  // 50 ms): beyond that state's own error it adds δv·Δt + ½·δa·Δt², with δv
+  // the state's velocity error (measured below, in the body frame, which the
+  // estimate's world and the ground truth's share) and δa under 0.8 m/s² (an
+  // accelerometer bias error or a 5 deg tilt error of gravity): 1 mm.
+  const io::Trajectory gt = io::readTrajectory(simulated().dataset + "/mav0/state_groundtruth_estimate0/data.csv");
+  double max_velocity_error = 0.0;
+  for (const io::TrajectorySample& e : io::readTrajectory(a.file("trajectory.csv")))
+    for (const io::TrajectorySample& g : gt)
+      if (std::llabs(g.t_ns - e.t_ns) < 1000000) 
+        max_velocity_error =
+            std::max(max_velocity_error, (e.T_w_b.so3().inverse() * e.v_w - g.T_w_b.so3().inverse() * g.v_w).norm());
+  const double imu_rate_ate = eval::evaluate(gt, imu_rate, eval::EvalOptions{}).ate_rmse_m;
+  std::printf("IMU-rate poses: %zu, ATE %.4f m (frames: %.4f m), largest velocity error %.4f m/s\n", imu_rate.size(),
+              imu_rate_ate, r.ate_rmse_m, max_velocity_error);
+  EXPECT_LT(imu_rate_ate, r.ate_rmse_m + max_velocity_error * 0.05 + 0.001);
 }
 
 TEST(Run, ShortRevisitingRenderLoopClosuresAreFoundAndDoNotHurt) {
@@ -316,6 +344,12 @@ TEST(Run, ShortRenderedSequenceInRealTimeAccountsForEveryFrame) {
   EXPECT_NEAR(s.latencyPercentile(100), max_latency, 0.001);
   EXPECT_LE(s.latencyPercentile(50), s.latencyPercentile(99));
   EXPECT_NE(summary.find("\"latency_ms\": {"), std::string::npos);
+  // The IMU-rate thread ran beside the frames: every pose it wrote has its latency.
+  EXPECT_GT(s.imu_rate_poses, 0u);
+  EXPECT_EQ(s.imu_rate_latencies_ms.size(), s.imu_rate_poses);
+  std::printf("IMU-rate poses %zu, latency p50 %.3f ms, p99 %.3f ms (real-time priority: %d)\n", s.imu_rate_poses,
+              nearestRankPercentile(s.imu_rate_latencies_ms, 50), nearestRankPercentile(s.imu_rate_latencies_ms, 99),
+              s.imu_rate_realtime_priority);
 }
 
 TEST(Run, ShortRenderedSequenceWithAnImuGapIsBridgedAndRestartsOnce) {

@@ -9,6 +9,7 @@
 #include "edgevio/common/time.h"
 #include "edgevio/imu/gyro_integration.h"
 #include "edgevio/io/sequence.h"
+#include "edgevio/pipeline/imu_rate_output.h"
 #include "edgevio/pipeline/odometry.h"
 #include "edgevio/pipeline/run_writer.h"
 #include "edgevio/pipeline/threaded_pipeline.h"
@@ -75,6 +76,11 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
 
   const std::vector<std::size_t> frames = framesToRun(*sequence, req.skip);
   s.frames_to_process = frames.size();
+  std::optional<ImuRateOutput> imu_rate;
+  if (req.mode.imu)
+    imu_rate.emplace(sequence->imu(), config.estimator.max_imu_gap_s,
+                     req.out_dir + "/trajectory_imu_rate_tum.txt", req.realtime, sequence->frameTime(frames.front()),
+                     Clock::now());
   std::size_t done = 0;
   const PipelineResult p = runThreaded(*sequence, frames, rect, config.vision, req.realtime, [&](PipelineFrame item) {
     ++done;
@@ -87,6 +93,7 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
     const auto posed = Clock::now();
     r.total_ms = item.load_ms + std::chrono::duration<double, std::milli>(posed - t_start).count();
     r.latency_ms = std::chrono::duration<double, std::milli>(posed - item.released).count();
+    if (imu_rate && r.state) imu_rate->publish(r.t_ns, *r.state);
     writer.write(r);
     std::vector<std::uint8_t> jpeg;
     if (keepsPicture(r, done - 1, req.picture_stride)) {
@@ -101,6 +108,11 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
     if (observer.progress) observer.progress(done + item.dropped_before, frames.size(), toSeconds(r.t_ns - t0));
   });
   if (writer.poses() == 0) throw InputError(req.dataset, 0, "no stereo pair could be read");
+  if (imu_rate) {
+    s.imu_rate_latencies_ms = imu_rate->finish(sequence->frameTime(frames.back()));
+    s.imu_rate_poses = imu_rate->poses();
+    s.imu_rate_realtime_priority = imu_rate->realtimePriority();
+  }
 
   s.finish();
   s.dropped_frames = p.dropped;

@@ -74,13 +74,11 @@ std::string RunSummary::lossText() const {
   return b;
 }
 
-double RunSummary::latencyPercentile(double p) const {
-  if (latencies_ms.empty()) return 0.0;
-  std::vector<double> sorted = latencies_ms;
-  std::sort(sorted.begin(), sorted.end());
-  // Nearest rank: the smallest value with at least p % of the values at or below it.
-  const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(sorted.size())));
-  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
+double nearestRankPercentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(values.size())));
+  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
 }
 
 namespace {
@@ -93,6 +91,13 @@ void strings(JsonWriter& j, const std::vector<std::string>& v) {
 template <auto M>
 void member(JsonWriter& j, const RunSummary& s) {
   j.value(s.*M);
+}
+/// {p50, p99, max} of latencies [ms].
+void percentiles(JsonWriter& j, const std::vector<double>& latencies_ms) {
+  j.beginObject();
+  j.key("p50").value(nearestRankPercentile(latencies_ms, 50)).key("p99").value(nearestRankPercentile(latencies_ms, 99));
+  j.key("max").value(nearestRankPercentile(latencies_ms, 100));
+  j.endObject();
 }
 }  // namespace
 
@@ -147,11 +152,19 @@ const std::vector<SummaryField>& summaryFields() {
       {"realtime_factor", "duration_s / wall_s", member<&S::realtime_factor>},
       {"peak_rss_mb", "peak resident memory of the process [MB]", member<&S::peak_rss_mb>},
       {"latency_ms", "frames.csv's latency_ms over the run: {p50, p99, max} (nearest-rank percentiles) [ms]",
-       [](J& j, const S& s) {
-         j.beginObject();
-         j.key("p50").value(s.latencyPercentile(50)).key("p99").value(s.latencyPercentile(99)).key("max").value(s.latencyPercentile(100));
-         j.endObject();
-       }},
+       [](J& j, const S& s) { percentiles(j, s.latencies_ms); }},
+      {"imu_rate_poses",
+       "IMU modes: poses in trajectory_imu_rate_tum.txt, one per IMU reading after the first estimate up to the last frame "
+       "(fewer across IMU gaps; in real time, from the first frame's release until the last frame's pose)",
+       member<&S::imu_rate_poses>},
+      {"imu_rate_latency_ms",
+       "real time, IMU modes: from each IMU reading's release (at its timestamp, as frames are released) to its "
+       "IMU-rate pose: {p50, p99, max} [ms]; 0 offline",
+       [](J& j, const S& s) { percentiles(j, s.imu_rate_latencies_ms); }},
+      {"imu_rate_realtime_priority",
+       "real time, IMU modes: the IMU-rate thread ran at real-time scheduling priority (SCHED_FIFO: root, CAP_SYS_NICE or "
+       "an rtprio limit); without it a reading can wait for a core behind the frame threads",
+       member<&S::imu_rate_realtime_priority>},
       {"events", "restarts, IMU gaps, unreadable images, each as \"t = … s: what\"", [](J& j, const S& s) { strings(j, s.events); }},
       {"warnings", "the dataset's warnings (missing images, IMU gaps, unpaired frames)",
        [](J& j, const S& s) { strings(j, s.warnings); }},

@@ -10,6 +10,10 @@
 
 namespace edgevio::pipeline {
 
+/// Nearest-rank percentile `p` (0 < p <= 100): the smallest value with at
+/// least p % of the values at or below it; 0 without values.
+double nearestRankPercentile(std::vector<double> values, double p);
+
 /// A time span where the estimate was not trusted (frames.csv status lost).
 struct LostInterval {
   double start_s = 0.0, end_s = 0.0;  ///< after the first frame: its first symptom, and the first frame tracked again (or the last frame)
@@ -41,6 +45,9 @@ struct RunSummary {
   double wall_s = 0.0, duration_s = 0.0, realtime_factor = 0.0;
   double peak_rss_mb = 0.0;  ///< peak resident memory of the process so far (getrusage)
   std::vector<double> latencies_ms;  ///< every frame's latency_ms, in order
+  std::size_t imu_rate_poses = 0;            ///< IMU modes: poses in trajectory_imu_rate_tum.txt
+  std::vector<double> imu_rate_latencies_ms;  ///< real time: each of those poses' latency, in order
+  bool imu_rate_realtime_priority = false;    ///< real time: the IMU-rate thread ran at real-time priority
   std::size_t trusted_frames = 0;    ///< frames with status ok
 
   /// The total length of the lost intervals [s].
@@ -51,7 +58,7 @@ struct RunSummary {
   /// "lost 1.20 s in 2 interval(s) (…)", or "" when nothing was lost.
   std::string lossText() const;
   /// Nearest-rank percentile `p` (0 < p <= 100) of the frames' latencies; 0 without frames.
-  double latencyPercentile(double p) const;
+  double latencyPercentile(double p) const { return nearestRankPercentile(latencies_ms, p); }
 
   /// Counts one frame. `t0_ns`: the sequence's first frame, for event and loss times.
   void count(const FrameRecord& r, std::int64_t t0_ns);

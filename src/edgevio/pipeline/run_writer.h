@@ -3,6 +3,7 @@
 // does not grow with the sequence):
 //   trajectory_tum.txt, trajectory.csv  the causal body pose of every processed frame
 //                                       (trajectory.csv with velocity and biases in the IMU modes)
+//   trajectory_imu_rate_tum.txt         IMU modes: the pose at every IMU reading (pipeline/imu_rate_output.h)
 //   frames.csv                          one FrameRecord per row (columns: frameColumns())
 //   summary.json                        the run as a whole (RunSummary)
 //   config.yaml                         the configuration that ran

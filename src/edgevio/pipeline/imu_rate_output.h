@@ -1,0 +1,67 @@
+#pragma once
+// trajectory_imu_rate_tum.txt (IMU modes): the pose of every IMU reading after
+// the first estimate, propagated from the newest estimate (imu/imu_rate.h).
+// Offline each frame's estimate counts as available at its own time: the
+// readings up to a frame are propagated from the frame before it, so the
+// file is deterministic. In real time a thread releases each reading at its
+// timestamp, as the driver releases frames, and propagates it from the newest
+// estimate the tracking thread has published by then; the time from a
+// reading's release to its pose is its latency.
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "edgevio/imu/imu_rate.h"
+#include "edgevio/io/trajectory_io.h"
+
+namespace edgevio::pipeline {
+
+class ImuRateOutput {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// `t_first_frame`: the first frame's time, released at `start` in real time.
+  ImuRateOutput(const std::vector<imu::ImuSample>& imu, double max_gap_s, const std::string& path,
+                bool realtime, std::int64_t t_first_frame, Clock::time_point start);
+  ~ImuRateOutput();
+  ImuRateOutput(const ImuRateOutput&) = delete;
+  ImuRateOutput& operator=(const ImuRateOutput&) = delete;
+
+  /// The estimate of the body at a frame's time t_ns (from the tracking thread).
+  void publish(std::int64_t t_ns, const imu::NavState& x);
+  /// After the last frame (t_last_frame): offline, the readings up to it; in
+  /// real time, stops the thread. Returns every pose's latency [ms] (real time; empty offline).
+  std::vector<double> finish(std::int64_t t_last_frame);
+  /// Poses written.
+  std::size_t poses() const { return writer_.count(); }
+  /// Real time: whether the reading thread got real-time scheduling priority (after finish()).
+  bool realtimePriority() const { return realtime_priority_; }
+
+ private:
+  void write(const imu::ImuSample& reading);
+  void releaseReadings();
+
+  const std::vector<imu::ImuSample>& imu_;
+  imu::ImuRatePropagator propagator_;
+  io::TrajectoryWriter writer_;
+  bool realtime_;
+  std::int64_t t_first_frame_;
+  Clock::time_point start_;
+  std::size_t next_ = 0;  ///< offline: the next reading to propagate
+  std::vector<double> latencies_ms_;
+  bool realtime_priority_ = false;
+
+  // Real time: the tracking thread's newest estimate, handed to the reading thread.
+  std::mutex mutex_;
+  std::condition_variable stop_signal_;
+  bool stop_ = false;
+  std::optional<std::pair<std::int64_t, imu::NavState>> mailbox_;
+  std::thread thread_;
+};
+
+}  // namespace edgevio::pipeline
