@@ -38,6 +38,12 @@ TEST(Factors, RelativePoseJacobiansMatchNumeric) {
     const auto fn = [&](const Eigen::VectorXd& d) -> Eigen::VectorXd { return relativePoseResidual(meas, r, boxplus(n, d), T_b_c); };
     test::expectJacobianNear(Jr, test::numericJacobian(fr, zero, 1e-6), 1e-6, "dr/dx_r");
     test::expectJacobianNear(Jn, test::numericJacobian(fn, zero, 1e-6), 1e-6, "dr/dx_n");
+    Mat6x3 Jc;
+    relativePoseResidual(meas, r, n, T_b_c, nullptr, nullptr, &Jc);
+    const auto fc = [&](const Eigen::VectorXd& d) -> Eigen::VectorXd {
+      return relativePoseResidual(meas, r, n, T_b_c * SE3(SO3::exp(d), Vec3::Zero()));
+    };
+    test::expectJacobianNear(Jc, test::numericJacobian(fc, Eigen::VectorXd::Zero(3), 1e-6), 1e-6, "dr/dphi_extrinsic");
   }
 }
 
@@ -81,7 +87,7 @@ Window syntheticWindow(std::vector<NavState>* truth) {
     init.p_w += v3(0.05);
     init.R_w_b = x.R_w_b * SO3::exp(v3(0.02));
     init.v_w += v3(0.05);
-    w.states.push_back({imu.samples[idx].t_ns, init});
+    w.states.push_back({imu.samples[idx].t_ns, init, 0.0, imu.samples[idx].gyro});
     if (k > 0) {
       imu::Preintegration p(Vec3::Zero(), Vec3::Zero(), imu::ImuNoise{});
       for (std::size_t m = idx - step; m < idx; ++m)
@@ -131,9 +137,13 @@ TEST(SlidingWindow, SolveReachesTheNoiseLevel) {
   }
 }
 
-void expectMarginalizationEquivalent(std::size_t removed, bool first_estimate_jacobians = false) {
+void expectMarginalizationEquivalent(std::size_t removed, bool first_estimate_jacobians = false, bool calibration = false) {
   std::vector<NavState> truth;
   Window full = syntheticWindow(&truth);
+  if (calibration) {
+    full.calibration = CalibrationState{};
+    full.calibration->time_offset = full.calibration->rotation = true;
+  }
   EstimatorOptions o = exactOptions();
   o.first_estimate_jacobians = first_estimate_jacobians;
   solve(&full, o);  // converged full problem
@@ -149,11 +159,16 @@ void expectMarginalizationEquivalent(std::size_t removed, bool first_estimate_ja
     worst = std::max(worst, boxminus(reduced.states[r].x, full.states[k].x).norm());
     ++r;
   }
+  if (calibration) worst = std::max(worst, boxminus(*reduced.calibration, *full.calibration).norm());
   std::printf("marginalising state %zu: max state difference %.2e\n", removed, worst);
   EXPECT_LT(worst, 1e-6);
 }
 
 TEST(SlidingWindow, MarginalisingAMiddleStateKeepsTheSolution) { expectMarginalizationEquivalent(3); }
+TEST(SlidingWindow, MarginalisingKeepsTheSolutionWithTheCalibrationEstimated) {
+  expectMarginalizationEquivalent(3, false, true);
+  expectMarginalizationEquivalent(0, true, true);
+}
 TEST(SlidingWindow, MarginalisingTheOldestStateKeepsTheSolution) { expectMarginalizationEquivalent(0); }
 TEST(SlidingWindow, WithFirstEstimateJacobiansMarginalisingKeepsTheSolution) {
   expectMarginalizationEquivalent(3, true);

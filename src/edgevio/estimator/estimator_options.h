@@ -10,8 +10,9 @@ struct EstimatorOptions {
       loop_check_rotation_deg, loop_check_translation_m, front_translation_m, front_rotation_deg,
       visual_covariance_scale, imu_noise_inflation, gyro_bias_walk_inflation, accel_bias_walk_inflation, max_imu_gap_s,
       repropagate_accel_bias, repropagate_gyro_bias, init_tilt_sigma_deg, init_velocity_sigma, init_accel_bias_sigma,
-      init_gyro_bias_sigma, reset_accel_bias, reset_gyro_bias, reset_velocity;
-  bool gauge_prior, first_estimate_jacobians;
+      init_gyro_bias_sigma, reset_accel_bias, reset_gyro_bias, reset_velocity, time_offset_sigma_ms,
+      cam_imu_rotation_sigma_deg;
+  bool gauge_prior, first_estimate_jacobians, estimate_time_offset, estimate_cam_imu_rotation;
 
   EDGEVIO_OPTIONS(EstimatorOptions)
 };
@@ -68,6 +69,16 @@ EDGEVIO_OPTIONS_TABLE(EstimatorOptions,
            "step, METHOD.md §5)"),
     number("first_estimate_jacobians", &S::first_estimate_jacobians, true, "-",
            "take the Jacobians of the states in the marginalisation prior at its linearisation point (false: at the estimate, "
-           "the paper's)"))
+           "the paper's)"),
+    number("estimate_time_offset", &S::estimate_time_offset, false, "-",
+           "IMU modes: estimate the camera-IMU time offset (IMU time minus camera time) in the window, starting from the "
+           "input's stamps (frames.csv time_offset_ms)"),
+    number("time_offset_sigma_ms", &S::time_offset_sigma_ms, 10.0, "ms",
+           "prior std. dev. of that offset around zero", above(0)),
+    number("estimate_cam_imu_rotation", &S::estimate_cam_imu_rotation, false, "-",
+           "IMU modes: estimate a correction of the calibration's camera-IMU rotation in the window (frames.csv "
+           "cam_imu_rotation_correction_deg)"),
+    number("cam_imu_rotation_sigma_deg", &S::cam_imu_rotation_sigma_deg, 2.0, "deg",
+           "prior std. dev. of that correction's angle about each axis", above(0)))
 
 }  // namespace edgevio::estimator

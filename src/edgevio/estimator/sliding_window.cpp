@@ -35,6 +35,25 @@ Vec15 boxminus(const NavState& x, const NavState& x0) {
   return d;
 }
 
+CalibrationState boxplus(const CalibrationState& c, const Eigen::Ref<const Vec15>& d) {
+  CalibrationState o = c;
+  o.time_offset_s += d(kCalibTimeOffset);
+  o.R_correction = c.R_correction * SO3::exp(d.segment<3>(kCalibRotation));
+  return o;
+}
+
+Vec15 boxminus(const CalibrationState& c, const CalibrationState& c0) {
+  Vec15 d = Vec15::Zero();
+  d(kCalibTimeOffset) = c.time_offset_s - c0.time_offset_s;
+  d.segment<3>(kCalibRotation) = (c0.R_correction.inverse() * c.R_correction).log();
+  return d;
+}
+
+geometry::SE3 cameraExtrinsics(const Window& w) {
+  if (!w.calibration) return w.T_b_c;
+  return w.T_b_c * geometry::SE3(w.calibration->R_correction, Vec3::Zero());
+}
+
 namespace {
 
 // Added to an inertial link's covariance so that a zero-length link still has
@@ -124,10 +143,60 @@ std::vector<const NavState*> jacobianPoints(const Window& w, const EstimatorOpti
   return at;
 }
 
-/// Adds the factors selected by the predicates, with local indices from `slot`.
+/// The state as the camera saw it: the body at IMU time t_ns + the
+/// calibration's time offset, i.e. moved along its velocity and bias-corrected
+/// gyroscope reading over the offset's change since its inertial link was
+/// integrated (first order, as VINS-Fusion's feature-velocity correction).
+NavState atCaptureTime(const WindowState& s, const NavState& x, const CalibrationState& c) {
+  const double dt = c.time_offset_s - s.time_offset_s;
+  NavState o = x;
+  o.R_w_b = x.R_w_b * SO3::exp((s.gyro - x.b_g) * dt);
+  o.p_w = x.p_w + x.v_w * dt;
+  return o;
+}
+
+/// A visual link's residual at states xr, xn (of w.states[l.r], [l.n]) and the
+/// window's calibration, with Jacobians for the states and the calibration
+/// block. ∂r/∂t of the time offset: the states' twists (Rᵀv, ω) through their
+/// Jacobians, whose δp columns are ∂r/∂ρ·Rᵀ, so ∂r/∂ρ·Rᵀv = J_δp·v.
+Vec6 visualResidual(const Window& w, const VisualLink& l, const NavState& xr, const NavState& xn, Mat6x15* Jr, Mat6x15* Jn,
+                    Mat6x15* Jc) {
+  if (!w.calibration) return relativePoseResidual(l.link.T_nr, xr, xn, w.T_b_c, Jr, Jn);
+  const CalibrationState& c = *w.calibration;
+  const NavState r = atCaptureTime(w.states[l.r], xr, c), n = atCaptureTime(w.states[l.n], xn, c);
+  Mat6x3 J_rotation;
+  const Vec6 res = relativePoseResidual(l.link.T_nr, r, n, cameraExtrinsics(w), Jr, Jn, Jc ? &J_rotation : nullptr);
+  if (Jc) {
+    Jc->setZero();
+    const auto twistColumn = [](const Mat6x15& J, const NavState& x, const WindowState& s) -> Vec6 {
+      return J.block<6, 3>(0, imu::kP) * x.v_w + J.block<6, 3>(0, imu::kR) * (s.gyro - x.b_g);
+    };
+    if (c.time_offset) Jc->col(kCalibTimeOffset) = twistColumn(*Jr, r, w.states[l.r]) + twistColumn(*Jn, n, w.states[l.n]);
+    if (c.rotation) Jc->block<6, 3>(0, kCalibRotation) = J_rotation;
+  }
+  return res;
+}
+
+/// The calibration file's prior on the calibration block (CalibrationState):
+/// ½(δ/σ)² per estimated direction, unit information on the others.
+void addCalibrationPrior(const CalibrationState& c, long slot, Normal* n) {
+  const Vec15 d = boxminus(c, CalibrationState{});
+  Vec15 info = Vec15::Ones();
+  info(kCalibTimeOffset) = c.time_offset ? 1.0 / (c.time_offset_sigma_s * c.time_offset_sigma_s) : 1.0;
+  info.segment<3>(kCalibRotation).setConstant(c.rotation ? 1.0 / (c.rotation_sigma_rad * c.rotation_sigma_rad) : 1.0);
+  n->cost += 0.5 * d.dot(info.cwiseProduct(d));
+  if (n->cost_only) return;
+  n->g.segment<15>(15 * slot) += info.cwiseProduct(d);
+  n->H.block<15, 15>(15 * slot, 15 * slot).diagonal() += info;
+}
+
+/// Adds the factors selected by the predicates, with local indices from
+/// `slot` and the calibration block (with the window's calibration) at
+/// `calib_slot`; `whole_window` also adds the calibration file's prior, which
+/// no marginalisation folds.
 template <class UseInertial, class UseVisual>
-void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::size_t, long>& slot, bool with_prior,
-               UseInertial use_inertial, UseVisual use_visual, Normal* n) {
+void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::size_t, long>& slot, long calib_slot,
+               bool whole_window, UseInertial use_inertial, UseVisual use_visual, Normal* n) {
   const std::vector<const NavState*> jp = jacobianPoints(w, o);
   // Jacobians in the residual's own call when they are taken at the estimate,
   // in a second call at the first estimates otherwise.
@@ -144,29 +213,39 @@ void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::s
   }
   for (const VisualLink& l : w.visual) {
     if (!use_visual(l)) continue;
-    Mat6x15 Jr, Jn;
+    Mat6x15 Jr, Jn, Jc;
     const bool fej = elsewhere(l.r, l.n), here = !n->cost_only && !fej;
-    const Vec6 r = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c, here ? &Jr : nullptr,
-                                        here ? &Jn : nullptr);
-    if (fej) relativePoseResidual(l.link.T_nr, *jp[l.r], *jp[l.n], w.T_b_c, &Jr, &Jn);
+    Mat6x15* Jc_here = w.calibration && here ? &Jc : nullptr;
+    const Vec6 r = visualResidual(w, l, w.states[l.r].x, w.states[l.n].x, here ? &Jr : nullptr, here ? &Jn : nullptr, Jc_here);
+    if (fej) visualResidual(w, l, *jp[l.r], *jp[l.n], &Jr, &Jn, w.calibration ? &Jc : nullptr);
     const Mat6 W = huberWeightedInformation(l.link.information, r, o.huber_translation_m, o.huber_rotation_deg * kDegToRad);
-    n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}});
+    if (w.calibration)
+      n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}, {calib_slot, Jc}});
+    else
+      n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}});
   }
-  if (with_prior && !w.prior.empty()) {
+  if (whole_window && w.calibration) addCalibrationPrior(*w.calibration, calib_slot, n);
+  if (!w.prior.empty()) {
     // ½δᵀHδ + bᵀδ at δ = x ⊟ x0: gradient b + Hδ, Hessian H (the Jacobian of
     // ⊟ is taken as identity: first-estimate linearisation of the prior).
-    const std::size_t m = w.prior.states.size();
-    VectorXd d(15 * static_cast<long>(m));
-    for (std::size_t k = 0; k < m; ++k)
+    const std::size_t m = w.prior.states.size(), blocks = m + (w.prior.calibration ? 1 : 0);
+    VectorXd d(15 * static_cast<long>(blocks));
+    std::vector<long> at(blocks);  // the prior's blocks' slots
+    for (std::size_t k = 0; k < m; ++k) {
       d.segment<15>(15 * static_cast<long>(k)) = boxminus(w.states[w.prior.states[k]].x, w.prior.x0[k]);
+      at[k] = slot.at(w.prior.states[k]);
+    }
+    if (w.prior.calibration) {
+      d.tail<15>() = boxminus(*w.calibration, w.prior.c0);
+      at[m] = calib_slot;
+    }
     n->cost += 0.5 * d.dot(w.prior.H * d) + w.prior.b.dot(d);
     if (n->cost_only) return;
     const VectorXd grad = w.prior.b + w.prior.H * d;
-    for (std::size_t a = 0; a < m; ++a) {
-      const long sa = slot.at(w.prior.states[a]);
-      n->g.segment<15>(15 * sa) += grad.segment<15>(15 * static_cast<long>(a));
-      for (std::size_t b = 0; b < m; ++b)
-        n->H.block<15, 15>(15 * sa, 15 * slot.at(w.prior.states[b])) +=
+    for (std::size_t a = 0; a < blocks; ++a) {
+      n->g.segment<15>(15 * at[a]) += grad.segment<15>(15 * static_cast<long>(a));
+      for (std::size_t b = 0; b < blocks; ++b)
+        n->H.block<15, 15>(15 * at[a], 15 * at[b]) +=
             w.prior.H.block<15, 15>(15 * static_cast<long>(a), 15 * static_cast<long>(b));
     }
   }
@@ -222,10 +301,13 @@ void reanchor(const NavState& oldest_before, Window* w) {
 
 }  // namespace
 
+/// Blocks in the window's normal equations: the states, then the calibration's.
+std::size_t windowBlocks(const Window& w) { return w.states.size() + (w.calibration ? 1 : 0); }
+
 double windowCost(const Window& w, const EstimatorOptions& o) {
-  Normal n(w.states.size(), true);
-  linearize(w, o, identitySlots(w.states.size()), true, [](const InertialLink&) { return true; },
-            [](const VisualLink&) { return true; }, &n);
+  Normal n(windowBlocks(w), true);
+  linearize(w, o, identitySlots(w.states.size()), static_cast<long>(w.states.size()), true,
+            [](const InertialLink&) { return true; }, [](const VisualLink&) { return true; }, &n);
   return n.cost;
 }
 
@@ -234,10 +316,11 @@ SolveSummary solve(Window* w, const EstimatorOptions& o) {
   const std::size_t N = w->states.size();
   if (N == 0) return s;
   const auto slots = identitySlots(N);
-  Normal n(N);
+  Normal n(windowBlocks(*w));
   for (int it = 0; it < o.max_iterations; ++it) {
     n.reset();
-    linearize(*w, o, slots, true, [](const InertialLink&) { return true; }, [](const VisualLink&) { return true; }, &n);
+    linearize(*w, o, slots, static_cast<long>(N), true, [](const InertialLink&) { return true; },
+              [](const VisualLink&) { return true; }, &n);
     if (it == 0) s.initial_cost = n.cost;
     double damping = o.damping;
     if (w->gauge != Gauge::kNone && o.gauge_prior) {
@@ -254,6 +337,7 @@ SolveSummary solve(Window* w, const EstimatorOptions& o) {
     if (!step.allFinite()) break;
     const NavState oldest = w->states.front().x;
     for (std::size_t k = 0; k < N; ++k) w->states[k].x = boxplus(w->states[k].x, step.segment<15>(15 * static_cast<long>(k)));
+    if (w->calibration) w->calibration = boxplus(*w->calibration, step.tail<15>());
     if (w->gauge != Gauge::kNone && !o.gauge_prior) reanchor(oldest, w);
     ++s.iterations;
     if (step.norm() < kNegligibleStep) break;
@@ -284,8 +368,9 @@ MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involv
   const std::size_t k = involved.front();
   std::map<std::size_t, long> slot;
   for (std::size_t a = 0; a < involved.size(); ++a) slot[involved[a]] = static_cast<long>(a);
-  Normal n(involved.size());
-  linearize(w, o, slot, true, [&](const InertialLink& l) { return l.i == k || l.j == k; },
+  // The calibration block, when the window has one, is last and stays in the prior.
+  Normal n(involved.size() + (w.calibration ? 1 : 0));
+  linearize(w, o, slot, static_cast<long>(involved.size()), false, [&](const InertialLink& l) { return l.i == k || l.j == k; },
             [&](const VisualLink& l) { return l.r == k || l.n == k; }, &n);
   // Schur complement on the first 15 rows/columns (state k).
   const long m = 15, r = n.H.rows() - m;
@@ -299,6 +384,10 @@ MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involv
     prior.states.push_back(involved[a]);
     prior.x0.push_back(w.states[involved[a]].x);
   }
+  if (w.calibration) {
+    prior.calibration = true;
+    prior.c0 = *w.calibration;
+  }
   if (o.first_estimate_jacobians) {
     // States already in the old prior keep their first estimate; b is moved
     // there, so that the quadratic keeps its gradient at the current estimate.
@@ -308,6 +397,10 @@ MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involv
       if (a == 0) continue;  // the state leaving
       prior.x0[static_cast<std::size_t>(a - 1)] = w.prior.x0[q];
       d.segment<15>(15 * (a - 1)) = boxminus(w.states[w.prior.states[q]].x, w.prior.x0[q]);
+    }
+    if (w.prior.calibration) {
+      prior.c0 = w.prior.c0;
+      d.tail<15>() = boxminus(*w.calibration, w.prior.c0);
     }
     prior.b -= prior.H * d;
   }

@@ -11,6 +11,7 @@
 // first prior it entered for as long as it stays in one, and every factor's
 // Jacobians with respect to it are taken there: the unobservable directions
 // (world translation, rotation about gravity) then stay out of the prior.
+#include <optional>
 #include <vector>
 
 #include "edgevio/estimator/estimator_options.h"
@@ -20,9 +21,32 @@
 namespace edgevio::estimator {
 
 struct WindowState {
-  std::int64_t t_ns = 0;
+  std::int64_t t_ns = 0;  ///< the camera's timestamp
   imu::NavState x;
+  /// The camera-IMU time offset its inertial link was integrated with (the
+  /// state is the body at IMU time t_ns + time_offset_s) and the gyroscope's
+  /// reading there: with the time offset estimated, the camera saw the body
+  /// where this motion carried it over the offset's change since.
+  double time_offset_s = 0.0;
+  Vec3 gyro = Vec3::Zero();
 };
+
+/// The camera-IMU calibration the window estimates beside its states
+/// (options estimate_time_offset, estimate_cam_imu_rotation): the time offset
+/// (IMU time minus camera time) and a rotation correction of the body-camera
+/// extrinsics, T_b_c = T_b_c(calibration)·(R_correction, 0), both relative to
+/// the calibration file's. Its error is padded to a state's 15 dimensions,
+/// [δt, δφ, 11 unused], so that the window's block algebra (envelope Cholesky,
+/// Schur complement) handles it as one more block; a direction not estimated
+/// (and every unused one) has unit information and never moves.
+struct CalibrationState {
+  bool time_offset = false, rotation = false;  ///< which are estimated
+  double time_offset_s = 0.0;
+  geometry::SO3 R_correction;
+  /// The calibration file's uncertainty: a prior ½(δ/σ)² on each, around zero.
+  double time_offset_sigma_s = 0.01, rotation_sigma_rad = 0.035;
+};
+inline constexpr long kCalibTimeOffset = 0, kCalibRotation = 1;
 
 /// Preintegration between states i and j (indices into Window::states).
 struct InertialLink {
@@ -45,7 +69,10 @@ struct VisualLink {
 struct MarginalPrior {
   std::vector<std::size_t> states;  ///< indices into Window::states
   std::vector<imu::NavState> x0;    ///< their linearisation point
-  Eigen::MatrixXd H;                ///< 15·|states| square
+  /// Whether the calibration block follows the states' (with the window's calibration), and its linearisation point.
+  bool calibration = false;
+  CalibrationState c0;
+  Eigen::MatrixXd H;                ///< 15·(|states| + calibration) square
   Eigen::VectorXd b;
   bool empty() const { return states.empty(); }
 };
@@ -61,9 +88,16 @@ struct Window {
   std::vector<InertialLink> inertial;
   std::vector<VisualLink> visual;
   MarginalPrior prior;
-  geometry::SE3 T_b_c;  ///< body → camera whose relative poses the visual links measure
+  geometry::SE3 T_b_c;  ///< body → camera whose relative poses the visual links measure (the calibration's)
   Gauge gauge = Gauge::kPositionYaw;
+  std::optional<CalibrationState> calibration;  ///< estimated beside the states when set
 };
+
+/// Body → camera: the calibration's, corrected by the window's estimate when it has one.
+geometry::SE3 cameraExtrinsics(const Window& w);
+/// The calibration block's plus/minus (CalibrationState).
+CalibrationState boxplus(const CalibrationState& c, const Eigen::Ref<const imu::Vec15>& d);
+imu::Vec15 boxminus(const CalibrationState& c, const CalibrationState& c0);
 
 struct SolveSummary {
   int iterations = 0;

@@ -29,11 +29,25 @@ VioEstimator::VioEstimator(const EstimatorOptions& options, const imu::ImuNoise&
   noise_.gyro_random_walk *= options.gyro_bias_walk_inflation;
   window_.T_b_c = T_b_c;
   window_.gauge = inertial ? Gauge::kPositionYaw : Gauge::kPose;
+  if (inertial && (options.estimate_time_offset || options.estimate_cam_imu_rotation)) {
+    CalibrationState c;
+    c.time_offset = options.estimate_time_offset;
+    c.rotation = options.estimate_cam_imu_rotation;
+    c.time_offset_sigma_s = options.time_offset_sigma_ms * 1e-3;
+    c.rotation_sigma_rad = options.cam_imu_rotation_sigma_deg * kDegToRad;
+    window_.calibration = c;
+  }
+}
+
+std::int64_t VioEstimator::imuTime(std::int64_t camera_t_ns) const {
+  if (!window_.calibration) return camera_t_ns;
+  return camera_t_ns + static_cast<std::int64_t>(std::llround(window_.calibration->time_offset_s * 1e9));
 }
 
 void VioEstimator::initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known, bool attitude_known) {
-  window_ = Window{{}, {}, {}, {}, window_.T_b_c, window_.gauge};
-  window_.states.push_back({t_ns, x});
+  // The calibration's estimate outlives a restart; what the marginalised states said of it does not.
+  window_ = Window{{}, {}, {}, {}, window_.T_b_c, window_.gauge, window_.calibration};
+  window_.states.push_back({t_ns, x, window_.calibration ? window_.calibration->time_offset_s : 0.0, Vec3::Zero()});
   predicted_newest_ = x;
   // Initial prior (METHOD.md §5 initialisation): position and yaw are the
   // gauge and stay free. Roll and pitch, when known (from the mean
@@ -93,19 +107,21 @@ std::optional<imu::NavState> VioEstimator::stateAt(std::int64_t t_ns) const {
 }
 
 std::optional<imu::Preintegration> VioEstimator::preintegrateTo(const std::vector<imu::ImuSample>& imu, std::int64_t t_ns) const {
-  const imu::NavState& x = newest();
-  return imu::preintegrate(imu, newestTime(), t_ns, x.b_a, x.b_g, noise_, options_.max_imu_gap_s);
+  const WindowState& s = window_.states.back();
+  const std::int64_t t0 = s.t_ns + static_cast<std::int64_t>(std::llround(s.time_offset_s * 1e9));
+  return imu::preintegrate(imu, t0, imuTime(t_ns), s.x.b_a, s.x.b_g, noise_, options_.max_imu_gap_s);
 }
 
 bool VioEstimator::imuCovers(const std::vector<imu::ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns) const {
   const imu::NavState& x = newest();
-  return imu::preintegrate(imu, t0_ns, t1_ns, x.b_a, x.b_g, noise_, options_.max_imu_gap_s).has_value();
+  return imu::preintegrate(imu, imuTime(t0_ns), imuTime(t1_ns), x.b_a, x.b_g, noise_, options_.max_imu_gap_s).has_value();
 }
 
 void VioEstimator::addState(std::int64_t t_ns, imu::Preintegration pre) {
   const std::size_t i = window_.states.size() - 1;
   predicted_newest_ = imu::predictState(window_.states[i].x, pre);
-  window_.states.push_back({t_ns, predicted_newest_});
+  window_.states.push_back(
+      {t_ns, predicted_newest_, window_.calibration ? window_.calibration->time_offset_s : 0.0, pre.lastGyro()});
   window_.inertial.push_back({i, i + 1, std::move(pre)});
 }
 
@@ -131,7 +147,7 @@ bool VioEstimator::addVisualLink(std::size_t r, std::size_t n, const SE3& T_nr, 
 bool VioEstimator::addLoopLink(std::int64_t t_ref_ns, std::int64_t t_new_ns, const SE3& T_nr, const Mat6& covariance) {
   const auto r = indexOf(t_ref_ns), n = indexOf(t_new_ns);
   if (!r || !n || *r == *n) return false;
-  if (inertial_ && !externalCheck(T_nr, window_.states[*r].x, window_.states[*n].x, window_.T_b_c,
+  if (inertial_ && !externalCheck(T_nr, window_.states[*r].x, window_.states[*n].x, cameraExtrinsics(),
                                   options_.loop_check_rotation_deg, options_.loop_check_translation_m)
                        .accepted)
     return false;
@@ -144,7 +160,7 @@ std::optional<ExternalCheckResult> VioEstimator::offerTrackingLink(std::int64_t 
   if (!r || *r + 1 == window_.states.size()) return std::nullopt;
   ExternalCheckResult check;
   if (inertial_)
-    check = externalCheck(T_nr, window_.states[*r].x, predicted_newest_, window_.T_b_c, options_.external_check_rotation_deg,
+    check = externalCheck(T_nr, window_.states[*r].x, predicted_newest_, cameraExtrinsics(), options_.external_check_rotation_deg,
                           options_.external_check_translation_m);
   if (check.accepted) addVisualLink(*r, window_.states.size() - 1, T_nr, covariance);
   return check;

@@ -77,7 +77,15 @@ class VioEstimator {
   const Window& window() const { return window_; }
   const EstimatorOptions& options() const { return options_; }
 
-  /// Preintegrates the IMU from the newest state to t_ns at its biases;
+  /// The window's estimate of the camera-IMU calibration, when it estimates one.
+  const std::optional<CalibrationState>& calibration() const { return window_.calibration; }
+  /// Body → camera with the window's correction (the calibration's without one).
+  geometry::SE3 cameraExtrinsics() const { return estimator::cameraExtrinsics(window_); }
+  /// The IMU's time of a camera timestamp: shifted by the estimated time offset.
+  std::int64_t imuTime(std::int64_t camera_t_ns) const;
+
+  /// Preintegrates the IMU from the newest state to t_ns (camera times; the
+  /// IMU's times follow imuTime) at its biases;
   /// nullopt without IMU coverage or across a gap longer than max_imu_gap_s.
   std::optional<imu::Preintegration> preintegrateTo(const std::vector<imu::ImuSample>& imu, std::int64_t t_ns) const;
   /// Whether the IMU covers [t0_ns, t1_ns] with no gap longer than max_imu_gap_s.

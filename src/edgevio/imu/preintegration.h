@@ -61,6 +61,8 @@ class Preintegration {
   const Mat15& jacobian() const { return J_; }
   const Vec3& linearizationBa() const { return b_a_; }
   const Vec3& linearizationBg() const { return b_g_; }
+  /// The gyroscope's reading at the interval's end (Propagation::kFull; zero without readings).
+  Vec3 lastGyro() const { return readings_.empty() ? Vec3::Zero() : readings_.back().gyr1; }
 
   /// Residual of eq 17 between states i and j, with the deltas corrected to
   /// first order for the biases of state i:
