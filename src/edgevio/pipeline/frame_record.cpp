@@ -1,12 +1,14 @@
 #include "edgevio/pipeline/frame_record.h"
 
 #include <cstdio>
+#include <limits>
 
 namespace edgevio::pipeline {
 
 namespace {
 
 using R = FrameRecord;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 Cell integer(long long v) { return {Cell::Kind::kInteger, v, 0.0, ""}; }
 Cell real(double v) { return {Cell::Kind::kReal, 0, v, ""}; }
@@ -88,6 +90,17 @@ constexpr FrameColumn kColumns[] = {
       {"loop_accepted", "-", "loop links that entered the window", [](const R& r) { return integer(r.loop_links); }},
       {"loop_window_rejected", "-", "loop links the estimator's loop check refused",
        [](const R& r) { return integer(r.loop_window_rejections); }},
+      {"time_offset_ms", "ms",
+       "the window's camera-IMU time offset, IMU time minus camera time (estimator.estimate_time_offset; NaN when off)",
+       [](const R& r) { return real(r.calibration && r.calibration->time_offset ? 1e3 * r.calibration->time_offset_s : kNaN); },
+       3},
+      {"cam_imu_rotation_correction_deg", "deg",
+       "the angle of the window's correction to the calibration's camera-IMU rotation (estimator.estimate_cam_imu_rotation; "
+       "NaN when off)",
+       [](const R& r) {
+         return real(r.calibration && r.calibration->rotation ? geometry::angle(r.calibration->R_correction) * kRadToDeg : kNaN);
+       },
+       3},
       {"canny_ms", "ms", "Canny on every pyramid level", [](const R& r) { return real(r.canny_ms); }, 3, false,
        {"Canny (pyramid)", "frame"}},
       {"dt_ms", "ms", "distance transform of every level", [](const R& r) { return real(r.dt_ms); }, 3, false,

@@ -61,7 +61,8 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
     processWithoutWindow(std::move(frame), &r);
   // The alignment's T_nr as the body's motion T_bn_br (what ground truth
   // gives directly: T_w_bn⁻¹·T_w_br), so the front end can be judged alone.
-  r.link_T_bn_br = T_b_c_ * r.alignment.T_nr * T_b_c_.inverse();
+  const SE3 T_b_c = cameraExtrinsics();
+  r.link_T_bn_br = T_b_c * r.alignment.T_nr * T_b_c.inverse();
   const Vec3 b_g = r.state ? r.state->b_g : init_.gyro_bias;
   if (const auto dR = gyroRotation(t_prev_, r.t_ns, b_g))
     r.gyro_disagreement_deg = (dR->inverse() * T_w_b_last_.so3().inverse() * r.T_w_b.so3()).log().norm() * kRadToDeg;
@@ -150,6 +151,7 @@ void Odometry::processInWindow(tracking::PreparedFrame frame, FrameRecord* r) {
   optimize(link_good, tracked.T_w_b, r);
   r->T_w_b = poseOf(estimator_->newest());
   if (mode_.imu) r->state = estimator_->newest();
+  r->calibration = estimator_->calibration();
 }
 
 void Odometry::bridgeImuGap(tracking::PreparedFrame frame, FrameRecord* r) {
@@ -300,12 +302,12 @@ void Odometry::closeLoops(FrameRecord* r) {
   if (!latest_state || !mode_.loop) return;
   std::vector<loop::LoopKeyframe> older;
   keyframes_.forEachInWindow([&](const Keyframe& k) {
-    if (k.data->t_ns != latest.data->t_ns) older.push_back({k.data, keyframePose(k) * T_b_c_});
+    if (k.data->t_ns != latest.data->t_ns) older.push_back({k.data, keyframePose(k) * cameraExtrinsics()});
   });
   r->loop_closure_ran = true;
   loop::LoopStats stats;
   const double budget_ms = realtime_ ? config_.loop.realtime_max_ms : std::numeric_limits<double>::infinity();
-  for (const loop::LoopLink& l : loop::closeLoops({latest.data, poseOf(*latest_state) * T_b_c_}, older, config_.loop,
+  for (const loop::LoopLink& l : loop::closeLoops({latest.data, poseOf(*latest_state) * cameraExtrinsics()}, older, config_.loop,
                                                   config_.alignment, budget_ms, &stats)) {
     const bool added = estimator_->addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
     r->loop_links += added;
@@ -320,13 +322,13 @@ void Odometry::linkBack(const SE3& T_w_b, FrameRecord* r) {
   const Keyframe& latest = *keyframes_.current();
   std::vector<loop::LoopKeyframe> previous;  // newest first, at the window's estimates
   keyframes_.forEachInWindow([&](const Keyframe& k) {
-    if (k.data->t_ns < latest.data->t_ns) previous.insert(previous.begin(), {k.data, keyframePose(k) * T_b_c_});
+    if (k.data->t_ns < latest.data->t_ns) previous.insert(previous.begin(), {k.data, keyframePose(k) * cameraExtrinsics()});
   });
   // The tracker's pose of the new keyframe carries its tracking link, so the
   // first back link is checked against that link.
   loop::BackLinkStats stats;
   for (const loop::LoopLink& l :
-       loop::backLinks({latest.data, T_w_b * T_b_c_}, previous, config_.back_links, config_.alignment, &stats))
+       loop::backLinks({latest.data, T_w_b * cameraExtrinsics()}, previous, config_.back_links, config_.alignment, &stats))
     r->back_links += estimator_->addLoopLink(l.t_ref_ns, l.t_new_ns, l.T_nr, l.covariance);
   r->back_link_ms = stats.ms;
 }
@@ -339,7 +341,12 @@ SE3 Odometry::keyframePose(const Keyframe& k) const {
 
 std::optional<SO3> Odometry::gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const {
   SO3 R;
-  if (t0 < 0 || !imu::integrateGyro(imu_, t0, t1, bias, config_.estimator.max_imu_gap_s, &R)) return std::nullopt;
+  if (t0 < 0) return std::nullopt;
+  if (windowed()) {
+    t0 = estimator_->imuTime(t0);
+    t1 = estimator_->imuTime(t1);
+  }
+  if (!imu::integrateGyro(imu_, t0, t1, bias, config_.estimator.max_imu_gap_s, &R)) return std::nullopt;
   return R;
 }
 

@@ -101,6 +101,8 @@ class Odometry {
   geometry::SE3 keyframePose(const Keyframe& k) const;
   std::optional<geometry::SO3> gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const;
   bool windowed() const { return estimator_.has_value(); }
+  /// Body → camera: the window's estimate when it corrects the calibration's.
+  geometry::SE3 cameraExtrinsics() const { return windowed() ? estimator_->cameraExtrinsics() : T_b_c_; }
 
   Mode mode_;
   Config config_;

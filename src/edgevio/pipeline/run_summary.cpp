@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "edgevio/common/json.h"
 #include "edgevio/common/time.h"
@@ -21,6 +22,7 @@ void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns) {
   loop_closures += static_cast<std::size_t>(r.loop_links);
   back_links += static_cast<std::size_t>(r.back_links);
   latencies_ms.push_back(r.latency_ms);
+  if (r.calibration) calibration = r.calibration;
   const double t = toSeconds(r.t_ns - t0_ns);
   const auto event = [&](const std::string& what) {
     char at[64];
@@ -93,6 +95,25 @@ void member(JsonWriter& j, const RunSummary& s) {
   j.value(s.*M);
 }
 /// {p50, p99, max} of latencies [ms].
+void onlineCalibration(JsonWriter& j, const std::optional<estimator::CalibrationState>& c) {
+  if (!c) {
+    j.null();
+    return;
+  }
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  j.beginObject();
+  j.key("time_offset_ms").value(c->time_offset ? 1e3 * c->time_offset_s : kNaN);
+  j.key("cam_imu_rotation_correction_deg");
+  if (c->rotation) {
+    const Vec3 v = c->R_correction.log() * kRadToDeg;
+    j.beginArray().value(v.x()).value(v.y()).value(v.z()).endArray();
+  } else {
+    j.null();
+  }
+  j.key("cam_imu_rotation_correction_angle_deg").value(c->rotation ? geometry::angle(c->R_correction) * kRadToDeg : kNaN);
+  j.endObject();
+}
+
 void percentiles(JsonWriter& j, const std::vector<double>& latencies_ms) {
   j.beginObject();
   j.key("p50").value(nearestRankPercentile(latencies_ms, 50)).key("p99").value(nearestRankPercentile(latencies_ms, 99));
@@ -165,6 +186,12 @@ const std::vector<SummaryField>& summaryFields() {
        "real time, IMU modes: the IMU-rate thread ran at real-time scheduling priority (SCHED_FIFO: root, CAP_SYS_NICE or "
        "an rtprio limit); without it a reading can wait for a core behind the frame threads",
        member<&S::imu_rate_realtime_priority>},
+      {"online_calibration",
+       "the window's last camera-IMU calibration estimate (estimator.estimate_time_offset, estimate_cam_imu_rotation), or "
+       "null: {time_offset_ms (IMU time minus camera time), cam_imu_rotation_correction_deg (the correction's rotation "
+       "vector, body axes: T_b_c = T_b_c(calibration) Exp(this)), cam_imu_rotation_correction_angle_deg}; a part not "
+       "estimated is null",
+       [](J& j, const S& s) { onlineCalibration(j, s.calibration); }},
       {"events", "restarts, IMU gaps, unreadable images, each as \"t = … s: what\"", [](J& j, const S& s) { strings(j, s.events); }},
       {"warnings", "the dataset's warnings (missing images, IMU gaps, unpaired frames)",
        [](J& j, const S& s) { strings(j, s.warnings); }},

@@ -2,6 +2,7 @@
 // What a run did as a whole (summary.json): counted from its frame records,
 // one record at a time, in one place.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,8 @@ struct RunSummary {
   std::vector<double> imu_rate_latencies_ms;  ///< real time: each of those poses' latency, in order
   bool imu_rate_realtime_priority = false;    ///< real time: the IMU-rate thread ran at real-time priority
   std::size_t trusted_frames = 0;    ///< frames with status ok
+  /// The last frame's camera-IMU calibration estimate, when the window estimated one.
+  std::optional<estimator::CalibrationState> calibration;
 
   /// The total length of the lost intervals [s].
   double lostSeconds() const;
