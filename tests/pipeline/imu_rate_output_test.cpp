@@ -63,6 +63,40 @@ TEST(ImuRateOutput, OfflineEveryReadingAfterTheFirstFrameUpToTheLastHasAPose) {
   EXPECT_EQ(checkPoses(path), poses);
 }
 
+TEST(ImuRateOutput, WithATimeOffsetPosesAreWrittenAtCameraTimes) {
+  // The IMU's clock 15 ms ahead: the reading taken at camera time t is stamped t + 15 ms.
+  constexpr std::int64_t kOffsetNs = 15000000;
+  const test::TempDir dir;
+  std::vector<imu::ImuSample> imu = readings(1.0);
+  for (imu::ImuSample& s : imu) s.t_ns += kOffsetNs;
+  const std::string path = dir.path() + "/imu_rate.txt";
+  const std::int64_t first = 2 * kImuStepNs, last = first + 15 * kFrameStepNs;
+  {
+    ImuRateOutput out(imu, 0.05, path, false, first, ImuRateOutput::Clock::now());
+    for (std::int64_t t = first; t <= last; t += kFrameStepNs) out.publish(t, truth(t), kOffsetNs);
+    out.finish(last);
+  }
+  const io::Trajectory poses = io::readTrajectory(path);
+  ASSERT_FALSE(poses.empty());
+  EXPECT_EQ(checkPoses(path), poses.size());
+  EXPECT_LE(poses.back().t_ns, last);
+}
+
+TEST(ImuRateOutput, AnOffsetEstimateThatGrowsKeepsTheTimesIncreasing) {
+  const test::TempDir dir;
+  const std::vector<imu::ImuSample> imu = readings(1.0);
+  const std::string path = dir.path() + "/imu_rate.txt";
+  const std::int64_t first = 2 * kImuStepNs, last = first + 15 * kFrameStepNs;
+  {
+    ImuRateOutput out(imu, 0.05, path, false, first, ImuRateOutput::Clock::now());
+    std::int64_t offset = 0;
+    for (std::int64_t t = first; t <= last; t += kFrameStepNs, offset += 7 * kImuStepNs) out.publish(t, truth(t), offset);
+    out.finish(last);
+  }
+  const io::Trajectory poses = io::readTrajectory(path);  // throws on a decreasing time
+  EXPECT_GT(poses.size(), 10u);
+}
+
 TEST(ImuRateOutput, InRealTimeEachPoseHasItsLatency) {
   const test::TempDir dir;
   const std::vector<imu::ImuSample> imu = readings(0.5);

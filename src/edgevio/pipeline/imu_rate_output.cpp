@@ -27,23 +27,29 @@ ImuRateOutput::~ImuRateOutput() {
 }
 
 void ImuRateOutput::write(const imu::ImuSample& reading) {
-  if (const std::optional<imu::NavState> x = propagator_.propagate(reading)) {
+  const std::optional<imu::NavState> x = propagator_.propagate(reading);
+  // A time offset estimate that grew moves the camera times back: a time
+  // already written has its pose.
+  if (x && reading.t_ns - time_offset_ns_ > last_written_ns_) {
     io::TrajectorySample s;
-    s.t_ns = reading.t_ns;
+    s.t_ns = reading.t_ns - time_offset_ns_;
+    last_written_ns_ = s.t_ns;
     s.T_w_b = geometry::SE3(x->R_w_b, x->p_w);
     writer_.write(s);
   }
 }
 
-void ImuRateOutput::publish(std::int64_t t_ns, const imu::NavState& x) {
+void ImuRateOutput::publish(std::int64_t t_ns, const imu::NavState& x, std::int64_t time_offset_ns) {
   if (realtime_) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    mailbox_ = {t_ns, x};
+    mailbox_ = Estimate{t_ns, time_offset_ns, x};
     return;
   }
   // Offline: the readings up to this frame come from the estimate before it.
-  for (; next_ < imu_.size() && imu_[next_].t_ns <= t_ns; ++next_) write(imu_[next_]);
-  propagator_.setEstimate(t_ns, x);
+  const std::int64_t t_imu = t_ns + time_offset_ns;
+  for (; next_ < imu_.size() && imu_[next_].t_ns <= t_imu; ++next_) write(imu_[next_]);
+  propagator_.setEstimate(t_imu, x);
+  time_offset_ns_ = time_offset_ns;
 }
 
 void ImuRateOutput::releaseReadings() {
@@ -61,7 +67,8 @@ void ImuRateOutput::releaseReadings() {
       std::unique_lock<std::mutex> lock(mutex_);
       if (stop_signal_.wait_until(lock, released, [this] { return stop_; })) return;
       if (mailbox_) {
-        propagator_.setEstimate(mailbox_->first, mailbox_->second);
+        propagator_.setEstimate(mailbox_->t_ns + mailbox_->time_offset_ns, mailbox_->x);
+        time_offset_ns_ = mailbox_->time_offset_ns;
         mailbox_.reset();
       }
     }
@@ -74,7 +81,7 @@ void ImuRateOutput::releaseReadings() {
 
 std::vector<double> ImuRateOutput::finish(std::int64_t t_last_frame) {
   if (!realtime_) {
-    for (; next_ < imu_.size() && imu_[next_].t_ns <= t_last_frame; ++next_) write(imu_[next_]);
+    for (; next_ < imu_.size() && imu_[next_].t_ns <= t_last_frame + time_offset_ns_; ++next_) write(imu_[next_]);
     return {};
   }
   {

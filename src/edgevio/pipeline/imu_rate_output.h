@@ -10,6 +10,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -32,8 +33,11 @@ class ImuRateOutput {
   ImuRateOutput(const ImuRateOutput&) = delete;
   ImuRateOutput& operator=(const ImuRateOutput&) = delete;
 
-  /// The estimate of the body at a frame's time t_ns (from the tracking thread).
-  void publish(std::int64_t t_ns, const imu::NavState& x);
+  /// The estimate of the body at a frame's time t_ns (from the tracking
+  /// thread), which is IMU time t_ns + time_offset_ns (the window's camera-IMU
+  /// time offset): the poses that follow are written at camera times, each
+  /// reading's time minus that offset.
+  void publish(std::int64_t t_ns, const imu::NavState& x, std::int64_t time_offset_ns = 0);
   /// After the last frame (t_last_frame): offline, the readings up to it; in
   /// real time, stops the thread. Returns every pose's latency [ms] (real time; empty offline).
   std::vector<double> finish(std::int64_t t_last_frame);
@@ -53,6 +57,8 @@ class ImuRateOutput {
   std::int64_t t_first_frame_;
   Clock::time_point start_;
   std::size_t next_ = 0;  ///< offline: the next reading to propagate
+  std::int64_t time_offset_ns_ = 0;  ///< the newest estimate's camera-IMU time offset
+  std::int64_t last_written_ns_ = std::numeric_limits<std::int64_t>::min();  ///< the newest pose's time
   std::vector<double> latencies_ms_;
   bool realtime_priority_ = false;
 
@@ -60,7 +66,11 @@ class ImuRateOutput {
   std::mutex mutex_;
   std::condition_variable stop_signal_;
   bool stop_ = false;
-  std::optional<std::pair<std::int64_t, imu::NavState>> mailbox_;
+  struct Estimate {
+    std::int64_t t_ns, time_offset_ns;
+    imu::NavState x;
+  };
+  std::optional<Estimate> mailbox_;
   std::thread thread_;
 };
 
