@@ -51,7 +51,7 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
                  *std::min_element(m.offset_cost.begin(), m.offset_cost.end()),
                  m.offset_cost.empty() ? 0.0 : m.offset_cost[m.offset_cost.size() / 2]),
           format("set dataset.imu_time_offset_ms to %.1f more than it is now (Kalibr's timeshift_cam_imu), or fix the "
-                 "driver's time stamping",
+                 "driver's time stamping; if it drifts, let the window follow it (estimator.estimate_time_offset: true)",
                  m.time_offset_ms));
     if (m.rotation_error_deg > o.rotation_warning_deg) {
       const Quat q = m.R_b_c.quaternion();
@@ -60,7 +60,8 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
           format("the camera's rotations between frames match the gyroscope's through a rotation %.2f deg from the "
                  "calibration's (rate residual %.3f rad/s RMS over %.0f frame pairs)",
                  m.rotation_error_deg, m.residual_rad_s, static_cast<double>(m.rotations)),
-          format("recalibrate camera and IMU (Kalibr's kalibr_calibrate_imu_camera); the measured rotation of the rectified "
+          format("recalibrate camera and IMU (Kalibr's kalibr_calibrate_imu_camera), or let the window correct it "
+                 "(estimator.estimate_cam_imu_rotation: true); the measured rotation of the rectified "
                  "left camera in the body, as a quaternion w x y z: %.5f %.5f %.5f %.5f",
                  q.w(), q.x(), q.y(), q.z()));
     }
