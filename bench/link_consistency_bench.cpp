@@ -1,0 +1,238 @@
+// How consistent the window's inputs are with their covariances (issue 31,
+// point 1), on renders whose truth is known:
+//  - the tracking links that entered the window: their error against the
+//    ground truth, e = Log(T_nr,true⁻¹·T_nr) (the alignment's right
+//    perturbation), normalised by the alignment's covariance (JᵀWJ)⁻¹: the
+//    NEES eᵀΣ⁻¹e has mean 6 for a consistent 6-dof estimate;
+//  - how much of a link's error its keyframe shares with the other links to
+//    it: per component, the intraclass correlation of the normalised errors
+//    grouped by keyframe (between-keyframe variance over total), and the
+//    correlation of consecutive links to one keyframe;
+//  - the IMU preintegration between consecutive frames: the residual of eq 17
+//    at the true states (velocity and biases from the ground truth) against
+//    its covariance at the calibration's densities: mean 9 over the motion
+//    block if consistent.
+// Usage: link_consistency_bench [--mode edge+imu] [--imu-truth FILE] DATASET...
+// (renders with ground truth; --imu-truth: a ground truth with velocity and
+// bias columns for the IMU part, e.g. EuRoC's groundtruth.csv beside a render
+// that replays its IMU log). Prints one markdown row per dataset and a total.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "edgevio/camera/stereo_rectifier.h"
+#include "edgevio/config/config.h"
+#include "edgevio/imu/preintegration.h"
+#include "edgevio/io/sequence.h"
+#include "edgevio/io/trajectory_io.h"
+#include "edgevio/pipeline/mode.h"
+#include "edgevio/pipeline/run.h"
+
+using namespace edgevio;
+using geometry::SE3;
+
+namespace {
+
+struct Link {
+  std::int64_t t_ns, t_ref_ns;
+  Vec6 normalised;  ///< e_k/σ_k per component: unit variance when consistent
+  double nees;      ///< eᵀΣ⁻¹e
+};
+
+/// Sums over the datasets.
+struct Totals {
+  std::size_t links = 0, inertial = 0;
+  double nees = 0, inertial_nees = 0;
+  Vec6 sum_sq = Vec6::Zero();
+};
+
+/// The ground truth at t (linear interpolation of position, velocity and
+/// biases, slerp of rotation between the bracketing samples); false outside.
+bool truthAt(const io::Trajectory& gt, std::int64_t t, io::TrajectorySample* out) {
+  const auto it = std::lower_bound(gt.begin(), gt.end(), t, [](const io::TrajectorySample& s, std::int64_t v) { return s.t_ns < v; });
+  if (it == gt.end() || (it == gt.begin() && it->t_ns != t)) return false;
+  if (it->t_ns == t) {
+    *out = *it;
+    return true;
+  }
+  const io::TrajectorySample &a = *(it - 1), &b = *it;
+  const double f = static_cast<double>(t - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns);
+  out->t_ns = t;
+  out->T_w_b = geometry::interpolate(a.T_w_b, b.T_w_b, f);
+  out->v_w = a.v_w + f * (b.v_w - a.v_w);
+  out->b_g = a.b_g + f * (b.b_g - a.b_g);
+  out->b_a = a.b_a + f * (b.b_a - a.b_a);
+  return true;
+}
+
+imu::NavState navState(const io::TrajectorySample& s) {
+  imu::NavState x;
+  x.R_w_b = s.T_w_b.so3();
+  x.p_w = s.T_w_b.translation();
+  x.v_w = s.v_w;
+  x.b_a = s.b_a;
+  x.b_g = s.b_g;
+  return x;
+}
+
+/// Intraclass correlation of component k over groups: the share of the
+/// variance that the group (the keyframe) explains, by one-way ANOVA,
+/// (MSB − MSW)/(MSB + (n̄−1)MSW).
+double intraclassCorrelation(const std::map<std::int64_t, std::vector<const Link*>>& groups, int k) {
+  double grand = 0;
+  std::size_t n = 0, g = 0;
+  for (const auto& [t, links] : groups) {
+    if (links.size() < 2) continue;
+    for (const Link* l : links) grand += l->normalised[k];
+    n += links.size();
+    ++g;
+  }
+  if (g < 2 || n <= g) return std::nan("");
+  grand /= static_cast<double>(n);
+  double ssb = 0, ssw = 0;
+  for (const auto& [t, links] : groups) {
+    if (links.size() < 2) continue;
+    double mean = 0;
+    for (const Link* l : links) mean += l->normalised[k];
+    mean /= static_cast<double>(links.size());
+    ssb += static_cast<double>(links.size()) * (mean - grand) * (mean - grand);
+    for (const Link* l : links) ssw += (l->normalised[k] - mean) * (l->normalised[k] - mean);
+  }
+  const double msb = ssb / static_cast<double>(g - 1), msw = ssw / static_cast<double>(n - g);
+  const double n_bar = static_cast<double>(n) / static_cast<double>(g);
+  return (msb - msw) / (msb + (n_bar - 1) * msw);
+}
+
+/// Correlation of component k between consecutive links to the same keyframe.
+double consecutiveCorrelation(const std::vector<Link>& links, int k) {
+  double sxy = 0, sxx = 0, syy = 0;
+  for (std::size_t i = 1; i < links.size(); ++i) {
+    if (links[i].t_ref_ns != links[i - 1].t_ref_ns) continue;
+    const double x = links[i - 1].normalised[k], y = links[i].normalised[k];
+    sxy += x * y;
+    sxx += x * x;
+    syy += y * y;
+  }
+  return sxx > 0 && syy > 0 ? sxy / std::sqrt(sxx * syy) : std::nan("");
+}
+
+void analyse(const std::string& dataset, pipeline::Mode mode, const std::string& imu_truth, Totals* totals) {
+  const io::Trajectory gt = io::readTrajectory(dataset + "/mav0/state_groundtruth_estimate0/data.csv");
+  const io::Trajectory imu_gt = imu_truth.empty() ? gt : io::readTrajectory(imu_truth);
+  const Config config;
+  SE3 T_b_c;
+  std::vector<imu::ImuSample> imu;
+  imu::ImuNoise noise;
+  std::vector<Link> links;
+  pipeline::RunObserver observer;
+  observer.opened = [&](const io::Sequence& s) {
+    T_b_c = camera::StereoRectifier(s.calibration(), config.rectification).T_b_rect(0);
+    imu = s.imu();
+    noise = s.calibration().imu;
+  };
+  std::vector<std::int64_t> frame_times;
+  observer.frame = [&](const pipeline::FrameRecord& r, const std::vector<std::uint8_t>&) {
+    frame_times.push_back(r.t_ns);
+    if (r.external_check != pipeline::ExternalCheck::kAccepted || r.reference_t_ns < 0) return;
+    io::TrajectorySample n, ref;
+    if (!truthAt(gt, r.t_ns, &n) || !truthAt(gt, r.reference_t_ns, &ref)) return;
+    const SE3 truth = (n.T_w_b * T_b_c).inverse() * (ref.T_w_b * T_b_c);
+    const Vec6 e = (truth.inverse() * r.alignment.T_nr).log();
+    const Eigen::LLT<Mat6> llt(r.alignment.covariance);
+    if (llt.info() != Eigen::Success) return;
+    const Vec6 sigma = r.alignment.covariance.diagonal().cwiseSqrt();
+    Link l{r.t_ns, r.reference_t_ns, e.cwiseQuotient(sigma), llt.matrixL().solve(e).squaredNorm()};
+    links.push_back(l);
+  };
+  const std::string out = (std::filesystem::temp_directory_path() / "edgevio_link_consistency").string();
+  pipeline::RunRequest req(dataset, out, mode);
+  req.picture_stride = 0;
+  pipeline::run(req, config, observer);
+  std::filesystem::remove_all(out);
+
+  // The IMU between consecutive frames at the true states.
+  double inertial_nees = 0;
+  std::size_t inertial = 0;
+  for (std::size_t i = 1; i < frame_times.size(); ++i) {
+    io::TrajectorySample a, b;
+    if (!truthAt(imu_gt, frame_times[i - 1], &a) || !truthAt(imu_gt, frame_times[i], &b) || !a.hasVelocityAndBias()) continue;
+    const auto pre = imu::preintegrate(imu, a.t_ns, b.t_ns, a.b_a, a.b_g, noise, config.estimator.max_imu_gap_s);
+    if (!pre) continue;
+    const imu::Vec15 r = pre->residual(navState(a), navState(b));
+    const Eigen::Matrix<double, 9, 9> P = pre->covariance().topLeftCorner<9, 9>();
+    inertial_nees += r.head<9>().dot(P.ldlt().solve(r.head<9>()));
+    ++inertial;
+  }
+
+  double nees = 0;
+  Vec6 sum_sq = Vec6::Zero();
+  std::map<std::int64_t, std::vector<const Link*>> by_keyframe;
+  for (const Link& l : links) {
+    nees += l.nees;
+    sum_sq += l.normalised.cwiseAbs2();
+    by_keyframe[l.t_ref_ns].push_back(&l);
+  }
+  const double m = static_cast<double>(std::max<std::size_t>(links.size(), 1));
+  std::printf("| %s | %zu | %.1f | %.2f %.2f %.2f | %.2f %.2f %.2f | %.2f %.2f | %.2f %.2f | %.2f |\n",
+              std::filesystem::path(dataset).filename().c_str(), links.size(), nees / m, std::sqrt(sum_sq[0] / m),
+              std::sqrt(sum_sq[1] / m), std::sqrt(sum_sq[2] / m), std::sqrt(sum_sq[3] / m), std::sqrt(sum_sq[4] / m),
+              std::sqrt(sum_sq[5] / m), (intraclassCorrelation(by_keyframe, 0) + intraclassCorrelation(by_keyframe, 1) +
+                                        intraclassCorrelation(by_keyframe, 2)) / 3,
+              (intraclassCorrelation(by_keyframe, 3) + intraclassCorrelation(by_keyframe, 4) +
+               intraclassCorrelation(by_keyframe, 5)) / 3,
+              (consecutiveCorrelation(links, 0) + consecutiveCorrelation(links, 1) + consecutiveCorrelation(links, 2)) / 3,
+              (consecutiveCorrelation(links, 3) + consecutiveCorrelation(links, 4) + consecutiveCorrelation(links, 5)) / 3,
+              inertial ? inertial_nees / static_cast<double>(inertial) : std::nan(""));
+  std::fflush(stdout);
+  totals->links += links.size();
+  totals->nees += nees;
+  totals->sum_sq += sum_sq;
+  totals->inertial += inertial;
+  totals->inertial_nees += inertial_nees;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  pipeline::Mode mode{true, false};
+  std::vector<std::string> datasets;
+  std::string imu_truth;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--imu-truth") == 0 && i + 1 < argc) {
+      imu_truth = argv[++i];
+      continue;
+    }
+    if (std::strcmp(argv[i], "--mode") == 0 && i + 1 < argc) {
+      const auto m = pipeline::parseMode(argv[++i]);
+      if (!m) {
+        std::fprintf(stderr, "--mode: one of %s\n", pipeline::kModeNames);
+        return 2;
+      }
+      mode = *m;
+    } else {
+      datasets.emplace_back(argv[i]);
+    }
+  }
+  if (datasets.empty()) {
+    std::fprintf(stderr, "usage: %s [--mode edge+imu] [--imu-truth FILE] DATASET...\n", argv[0]);
+    return 2;
+  }
+  std::printf("mode %s; NEES against the alignment's covariance (JtWJ)^-1 (6 if consistent; the window uses it x "
+              "estimator.visual_covariance_scale); RMS of e_k/sigma_k per component (1 if consistent); "
+              "intraclass correlation by keyframe and correlation of consecutive links to one keyframe (0 if "
+              "independent); IMU NEES of the motion block at the calibration's densities (9 if consistent)\n\n",
+              pipeline::modeName(mode).c_str());
+  std::printf("| dataset | links | NEES | RMS z: tx ty tz | rx ry rz | ICC t, r | consecutive t, r | IMU NEES |\n");
+  std::printf("|---|---:|---:|---|---|---|---|---:|\n");
+  Totals t;
+  for (const std::string& d : datasets) analyse(d, mode, imu_truth, &t);
+  const double m = static_cast<double>(std::max<std::size_t>(t.links, 1));
+  std::printf("| all | %zu | %.1f | %.2f %.2f %.2f | %.2f %.2f %.2f | | | %.2f |\n", t.links, t.nees / m, std::sqrt(t.sum_sq[0] / m),
+              std::sqrt(t.sum_sq[1] / m), std::sqrt(t.sum_sq[2] / m), std::sqrt(t.sum_sq[3] / m), std::sqrt(t.sum_sq[4] / m),
+              std::sqrt(t.sum_sq[5] / m), t.inertial ? t.inertial_nees / static_cast<double>(t.inertial) : std::nan(""));
+  return 0;
+}
