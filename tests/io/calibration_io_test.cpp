@@ -57,6 +57,26 @@ TEST(CalibrationIo, KalibrAgreesWithEuroc) {
     EXPECT_NEAR(kalibr.cam[i].coeffs[3], euroc.cam[i].coeffs[3], 1e-15);
   }
   EXPECT_NEAR(kalibr.imu.accel_random_walk, 0.003, 1e-15);
+  EXPECT_EQ(kalibr.imu_time_offset_s, 0.0);  // no timeshift_cam_imu: none
+}
+
+TEST(CalibrationIo, KalibrTimeshiftIsTheImuClockOffsetAndRoundTrips) {
+  TempDir dir;
+  camera::StereoRig rig = eurocDefaultRig();
+  rig.imu_time_offset_s = -0.0125;
+  const std::string camchain = dir.file("camchain-imucam.yaml"), imu = dir.file("imu.yaml");
+  writeKalibrCalibration(camchain, imu, rig);
+  EXPECT_EQ(loadKalibrCalibration(camchain, imu).imu_time_offset_s, -0.0125);
+  // Out of range: an error naming the file and line.
+  std::string text = test::readFile(camchain);
+  text.replace(text.find("timeshift_cam_imu: -0.0125"), 26, "timeshift_cam_imu: 3.5");
+  dir.write("bad/camchain-imucam.yaml", text);
+  try {
+    loadKalibrCalibration(dir.file("bad/camchain-imucam.yaml"));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("timeshift_cam_imu"), std::string::npos) << e.what();
+  }
 }
 
 TEST(CalibrationIo, EquidistantModelIsRead) {

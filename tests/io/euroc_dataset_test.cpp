@@ -71,6 +71,22 @@ TEST(EurocDataset, ImuTimeOffsetMovesTheImuOntoTheCamerasClock) {
   EXPECT_EQ(raw.frameTime(0), moved.frameTime(0));
 }
 
+TEST(EurocDataset, TheCalibrationsClockOffsetAndTheOptionsAdd) {
+  // A Kalibr calibration's timeshift_cam_imu is applied when the log is read
+  // (folders and bags alike); dataset.imu_time_offset_ms corrects beyond it.
+  std::vector<imu::ImuSample> log(3);
+  for (std::size_t i = 0; i < log.size(); ++i) log[i].t_ns = 1000000000LL + static_cast<std::int64_t>(i) * 5000000;
+  camera::StereoRig rig;
+  rig.imu_time_offset_s = 0.010;
+  DatasetOptions options;
+  options.imu_time_offset_ms = 2.5;
+  std::vector<std::string> warnings;
+  std::vector<imu::ImuSample> moved = log;
+  prepareImuLog(&moved, rig, options, "log", &warnings);
+  for (std::size_t i = 0; i < log.size(); ++i) EXPECT_EQ(log[i].t_ns - moved[i].t_ns, 12500000);
+  EXPECT_TRUE(warnings.empty());
+}
+
 TEST(EurocDataset, MissingImageIsSkippedWithWarning) {
   TempDir dir;
   const std::string root = test::writeMiniDataset(dir);

@@ -15,6 +15,9 @@ struct StereoRig {
   geometry::SE3 T_b_c[2];
   double camera_rate_hz = 20.0;  ///< nominal frame rate [Hz]
   imu::ImuNoise imu;
+  /// The IMU's clock minus the cameras' [s]: Kalibr's timeshift_cam_imu of
+  /// cam0 (t_imu = t_cam + shift); 0 for EuRoC's sensor.yaml files, which have none.
+  double imu_time_offset_s = 0.0;
   /// The ROS topics the calibration was made from (Kalibr's rostopic), or empty.
   std::string topic[2], imu_topic;
 

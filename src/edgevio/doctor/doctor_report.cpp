@@ -50,9 +50,10 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
                  m.time_offset_ms, m.time_offset_sigma_ms,
                  *std::min_element(m.offset_cost.begin(), m.offset_cost.end()),
                  m.offset_cost.empty() ? 0.0 : m.offset_cost[m.offset_cost.size() / 2]),
-          format("set dataset.imu_time_offset_ms to %.1f more than it is now (Kalibr's timeshift_cam_imu), or fix the "
-                 "driver's time stamping; if it drifts, let the window follow it (estimator.estimate_time_offset: true)",
-                 m.time_offset_ms));
+          format("set dataset.imu_time_offset_ms to %.1f more than it is now (or Kalibr's timeshift_cam_imu to %.4f s "
+                 "more), or fix the driver's time stamping; if it drifts, let the window follow it "
+                 "(estimator.estimate_time_offset: true)",
+                 m.time_offset_ms, m.time_offset_ms * 1e-3));
     if (m.rotation_error_deg > o.rotation_warning_deg) {
       const Quat q = m.R_b_c.quaternion();
       add(m.rotation_error_deg > 4 * o.rotation_warning_deg ? Severity::kError : Severity::kWarning,

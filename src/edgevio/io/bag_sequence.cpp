@@ -240,7 +240,7 @@ void BagSequence::readMessages(const DatasetOptions& options) {
     imu_.push_back(imu[k].second);
   }
   checkImu(options);
-  prepareImuLog(&imu_, options, path_ + ", topic " + topics_.imu, &warnings_);
+  prepareImuLog(&imu_, rig_, options, path_ + ", topic " + topics_.imu, &warnings_);
   ground_truth_ = byStamp(std::move(gt));
 }
 

@@ -93,6 +93,12 @@ StereoRig loadKalibrCalibration(const std::string& camchain_yaml, const std::str
     rig.T_b_c[i] = geometry::SE3::fromMatrix(yamlMatrix4(cam, "T_cam_imu", camchain_yaml)).inverse();
     if (cam["rostopic"] && cam["rostopic"].IsScalar()) rig.topic[i] = cam["rostopic"].Scalar();
   }
+  if (root["cam0"]["timeshift_cam_imu"]) {
+    rig.imu_time_offset_s = yamlDouble(root["cam0"], "timeshift_cam_imu", camchain_yaml);
+    if (!std::isfinite(rig.imu_time_offset_s) || std::abs(rig.imu_time_offset_s) > 1.0)
+      throw InputError(camchain_yaml, yamlLine(root["cam0"]["timeshift_cam_imu"]),
+                       "cam0 timeshift_cam_imu must be a time in seconds within +-1 s (t_imu = t_cam + shift)");
+  }
   if (!imu_yaml.empty()) {
     const YAML::Node imu_root = loadYamlFile(imu_yaml);
     const YAML::Node imu = yamlRequire(imu_root, "imu0", imu_yaml);
@@ -148,6 +154,7 @@ void writeKalibrCalibration(const std::string& camchain_yaml, const std::string&
       << c.coeffs[2] << ", " << c.coeffs[3] << "]\n  resolution: [" << c.width << ", " << c.height << "]\n  rostopic: '"
       << rig.topic[i] << "'\n  T_cam_imu:\n";
     for (int r = 0; r < 4; ++r) f << "  - [" << T(r, 0) << ", " << T(r, 1) << ", " << T(r, 2) << ", " << T(r, 3) << "]\n";
+    f << "  timeshift_cam_imu: " << rig.imu_time_offset_s << "\n";
   }
   std::ofstream g(imu_yaml);
   if (!g) throw InputError(imu_yaml, 0, "cannot write calibration file");

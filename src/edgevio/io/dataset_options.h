@@ -22,8 +22,8 @@ EDGEVIO_OPTIONS_TABLE(DatasetOptions,
     number("imu_glitch_accel_mps2", &S::imu_glitch_accel_mps2, 40.0, "m/s^2",
            "... or an accelerometer reading this far (real EuRoC logs, landings included: at most 18)", above(0).orOff()),
     number("imu_time_offset_ms", &S::imu_time_offset_ms, 0.0, "ms",
-           "the IMU's clock minus the cameras' (Kalibr's timeshift_cam_imu in ms; `edgevio doctor` measures it): the IMU's "
-           "stamps are moved back by this when read",
+           "the IMU's clock minus the cameras', beyond the calibration's (a Kalibr camchain's timeshift_cam_imu, applied "
+           "already; `edgevio doctor` measures what is left): the IMU's stamps are moved back by this when read",
            closed(-1000, 1000)))
 
 }  // namespace edgevio::io

@@ -85,7 +85,7 @@ void EurocDataset::pairFrames(const std::vector<ImageRecord>& left, const std::v
 void EurocDataset::readImu() {
   const std::string path = (fs::path(mav0_) / "imu0" / "data.csv").string();
   imu_ = readImuCsv(path, options_.imu_gap_warning_s, &warnings_);
-  prepareImuLog(&imu_, options_, path, &warnings_);
+  prepareImuLog(&imu_, rig_, options_, path, &warnings_);
 }
 
 double EurocDataset::imuRateHz() const {
@@ -140,9 +140,9 @@ std::function<cv::Mat()> EurocDataset::rightImageLoader(std::size_t i) const {
   };
 }
 
-void prepareImuLog(std::vector<imu::ImuSample>* imu, const DatasetOptions& options, const std::string& where,
-                        std::vector<std::string>* warnings) {
-  const auto clock_offset_ns = static_cast<std::int64_t>(std::llround(options.imu_time_offset_ms * 1e6));
+void prepareImuLog(std::vector<imu::ImuSample>* imu, const camera::StereoRig& rig, const DatasetOptions& options,
+                   const std::string& where, std::vector<std::string>* warnings) {
+  const auto clock_offset_ns = static_cast<std::int64_t>(std::llround(rig.imu_time_offset_s * 1e9 + options.imu_time_offset_ms * 1e6));
   for (imu::ImuSample& s : *imu) s.t_ns -= clock_offset_ns;
   const std::vector<std::size_t> replaced = imu::replaceGlitches(imu, options.imu_glitch_gyro_rad_s, options.imu_glitch_accel_mps2);
   if (replaced.empty()) return;

@@ -75,9 +75,10 @@ std::unique_ptr<Sequence> openSequence(const SequenceSource& source, const Datas
 
 /// Replaces the IMU glitches of a sequence's log (imu/imu_glitches.h, the
 /// thresholds of `options`), saying so in one warning naming `where`, and
-/// moves its stamps onto the cameras' clock (dataset.imu_time_offset_ms).
-void prepareImuLog(std::vector<imu::ImuSample>* imu, const DatasetOptions& options, const std::string& where,
-                        std::vector<std::string>* warnings);
+/// moves its stamps onto the cameras' clock: back by the calibration's
+/// offset (`rig`, Kalibr's timeshift_cam_imu) plus dataset.imu_time_offset_ms.
+void prepareImuLog(std::vector<imu::ImuSample>* imu, const camera::StereoRig& rig, const DatasetOptions& options,
+                   const std::string& where, std::vector<std::string>* warnings);
 
 /// Pairs left and right image times (both increasing) that lie within
 /// `tolerance_ns` of each other, in order: (left index, right index) per
