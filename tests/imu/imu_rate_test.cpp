@@ -111,6 +111,31 @@ TEST(ImuRate, ALateEstimateTakesOverFromItsOwnTime) {
   EXPECT_EQ(prop.estimateTime(), static_cast<std::int64_t>(t_new * 1e9));
 }
 
+TEST(ImuRate, WithoutNewEstimatesTheKeptReadingsStayBounded) {
+  // A stalled tracker: one estimate, then a minute of readings. The poses go
+  // on from the estimate, and at most kKeptSeconds + 1 s of readings (+ the
+  // one before) wait for a later estimate.
+  const Accelerating m;
+  ImuRatePropagator prop(0.05);
+  prop.setEstimate(0, m.state(0));
+  prop.propagate(m.reading(0));
+  const int readings = static_cast<int>(60.0 / (kStepNs * 1e-9));
+  const std::size_t bound = static_cast<std::size_t>((ImuRatePropagator::kKeptSeconds + 1.0) / (kStepNs * 1e-9)) + 2;
+  std::size_t most = 0;
+  for (int k = 1; k <= readings; ++k) {
+    ASSERT_TRUE(prop.propagate(m.reading(k * kStepNs))) << k;
+    most = std::max(most, prop.keptReadings());
+  }
+  EXPECT_LE(most, bound);
+  EXPECT_GT(most, bound - 10);  // it does keep them
+  // An estimate 5 s behind the newest reading still takes over.
+  const std::int64_t t_new = (readings - 1000) * kStepNs + kStepNs / 2;
+  prop.setEstimate(t_new, m.state(t_new * 1e-9));
+  const std::optional<NavState> x = prop.propagate(m.reading((readings + 1) * kStepNs));
+  ASSERT_TRUE(x);
+  EXPECT_LT((x->p_w - m.state((readings + 1) * kStepNs * 1e-9).p_w).norm(), 1e-6);
+}
+
 TEST(ImuRate, NothingBeforeAnEstimateNorAcrossAGap) {
   const Accelerating m;
   ImuRatePropagator prop(0.05);

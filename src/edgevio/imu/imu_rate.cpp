@@ -45,6 +45,16 @@ std::optional<NavState> ImuRatePropagator::propagate(const ImuSample& reading) {
     recent_.erase(recent_.begin(), recent_.end() - 1);
     return std::nullopt;
   }
+  // Readings older than kKeptSeconds go once integrated (a later estimate is
+  // never that far behind), a second's worth at a time so that erasing from
+  // the front stays rare.
+  const std::int64_t keep_from = reading.t_ns - toNanoseconds(kKeptSeconds);
+  if (recent_.front().t_ns < keep_from - toNanoseconds(1.0) && recent_.front().t_ns < t_integrated_) {
+    const auto old_end = std::find_if(recent_.begin(), recent_.end(), [&](const ImuSample& s) {
+      return s.t_ns >= keep_from || s.t_ns >= t_integrated_;
+    });
+    recent_.erase(recent_.begin(), old_end - 1);
+  }
   if (broken_ || reading.t_ns <= t_estimate_) return std::nullopt;
   integrateSince(t_integrated_);
   if (broken_ || t_integrated_ != reading.t_ns) return std::nullopt;

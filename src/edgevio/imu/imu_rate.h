@@ -27,6 +27,14 @@ class ImuRatePropagator {
 
   /// The time of the estimate the last propagation started from; -1 before one.
   std::int64_t estimateTime() const { return t_estimate_; }
+  /// Readings kept for a later estimate to start from (at most kKeptSeconds + 1 s worth).
+  std::size_t keptReadings() const { return recent_.size(); }
+
+  /// How far behind the newest reading an estimate may still arrive and take
+  /// over [s]: a frame's pose that late is of no use to a controller, and
+  /// the readings kept for it stay bounded when no estimate comes (a stalled
+  /// tracker), 2,200 at 200 Hz.
+  static constexpr double kKeptSeconds = 10.0;
 
  private:
   void integrateSince(std::int64_t t0_ns);
