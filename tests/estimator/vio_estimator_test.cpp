@@ -13,6 +13,7 @@
 #include <set>
 
 #include "common/imu_scenario.h"
+#include "edgevio/common/time.h"
 #include "edgevio/sim/random.h"
 
 namespace edgevio::estimator {
@@ -57,7 +58,7 @@ struct Miscalibration {
 RunStats drive(const Scenario& sc, double sigma_t, double sigma_r, int frames, const EstimatorOptions& o = testOptions(),
                const Miscalibration& wrong = {}, std::uint64_t seed = 5) {
   const std::int64_t dt = 50000000, t0 = sc.spline.beginNs() + 1000000000LL;
-  const auto taken = [&](std::int64_t t) { return t + static_cast<std::int64_t>(std::llround(wrong.clock_offset_s * 1e9)); };
+  const auto taken = [&](std::int64_t t) { return t + toNanoseconds(wrong.clock_offset_s); };
   VioEstimator est(o, sc.rig.imu, sc.rig.T_b_c[0] * SE3(wrong.rotation_error, Vec3::Zero()), true);
   // The test's gauge and initial condition: start on the true pose and
   // velocity (what a static start or visual-inertial alignment provides);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "edgevio/common/time.h"
 #include "edgevio/imu/preintegration.h"
 
 namespace edgevio::estimator {
@@ -41,7 +42,7 @@ VioEstimator::VioEstimator(const EstimatorOptions& options, const imu::ImuNoise&
 
 std::int64_t VioEstimator::imuTime(std::int64_t camera_t_ns) const {
   if (!window_.calibration) return camera_t_ns;
-  return camera_t_ns + static_cast<std::int64_t>(std::llround(window_.calibration->time_offset_s * 1e9));
+  return camera_t_ns + toNanoseconds(window_.calibration->time_offset_s);
 }
 
 void VioEstimator::initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known, bool attitude_known) {
@@ -108,7 +109,7 @@ std::optional<imu::NavState> VioEstimator::stateAt(std::int64_t t_ns) const {
 
 std::optional<imu::Preintegration> VioEstimator::preintegrateTo(const std::vector<imu::ImuSample>& imu, std::int64_t t_ns) const {
   const WindowState& s = window_.states.back();
-  const std::int64_t t0 = s.t_ns + static_cast<std::int64_t>(std::llround(s.time_offset_s * 1e9));
+  const std::int64_t t0 = s.t_ns + toNanoseconds(s.time_offset_s);
   return imu::preintegrate(imu, t0, imuTime(t_ns), s.x.b_a, s.x.b_g, noise_, options_.max_imu_gap_s);
 }
 

@@ -142,7 +142,7 @@ std::function<cv::Mat()> EurocDataset::rightImageLoader(std::size_t i) const {
 
 void prepareImuLog(std::vector<imu::ImuSample>* imu, const camera::StereoRig& rig, const DatasetOptions& options,
                    const std::string& where, std::vector<std::string>* warnings) {
-  const auto clock_offset_ns = static_cast<std::int64_t>(std::llround(rig.imu_time_offset_s * 1e9 + options.imu_time_offset_ms * 1e6));
+  const std::int64_t clock_offset_ns = toNanoseconds(rig.imu_time_offset_s + options.imu_time_offset_ms * 1e-3);
   for (imu::ImuSample& s : *imu) s.t_ns -= clock_offset_ns;
   const std::vector<std::size_t> replaced = imu::replaceGlitches(imu, options.imu_glitch_gyro_rad_s, options.imu_glitch_accel_mps2);
   if (replaced.empty()) return;

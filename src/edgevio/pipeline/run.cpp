@@ -1,6 +1,5 @@
 #include "edgevio/pipeline/run.h"
 
-#include <cmath>
 #include <sys/resource.h>
 
 #include <chrono>
@@ -96,7 +95,7 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
     r.latency_ms = std::chrono::duration<double, std::milli>(posed - item.released).count();
     if (imu_rate && r.state)
       imu_rate->publish(r.t_ns, *r.state,
-                        r.calibration ? static_cast<std::int64_t>(std::llround(r.calibration->time_offset_s * 1e9)) : 0);
+                        r.calibration ? toNanoseconds(r.calibration->time_offset_s) : 0);
     writer.write(r);
     std::vector<std::uint8_t> jpeg;
     if (keepsPicture(r, done - 1, req.picture_stride)) {
