@@ -4,6 +4,8 @@
 
 #include <pthread.h>
 
+#include "edgevio/pipeline/threaded_pipeline.h"
+
 namespace edgevio::pipeline {
 
 ImuRateOutput::ImuRateOutput(const std::vector<imu::ImuSample>& imu, double max_gap_s,
@@ -53,7 +55,7 @@ void ImuRateOutput::publish(std::int64_t t_ns, const imu::NavState& x, std::int6
 }
 
 void ImuRateOutput::releaseReadings() {
-  pthread_setname_np(pthread_self(), "ev-imu-rate");
+  nameThread("ev-imu-rate");
   // A reading must not wait for a core behind the frame threads: real-time
   // priority where the process may have it (root, CAP_SYS_NICE or an rtprio
   // limit), otherwise the normal one (summary.json says which).

@@ -49,10 +49,9 @@ Loaded load(io::Sequence& sequence, std::size_t i, const camera::StereoRectifier
   return item;
 }
 
-/// Names the calling thread as profilers (perf, top -H) and debuggers show it.
-void nameThread(const char* name) { pthread_setname_np(pthread_self(), name); }
-
 }  // namespace
+
+void nameThread(const char* name) { pthread_setname_np(pthread_self(), name); }
 
 PipelineResult runThreaded(io::Sequence& sequence, const std::vector<std::size_t>& frames,
                            const camera::StereoRectifier& rect, const vision::VisionOptions& vision, bool realtime,

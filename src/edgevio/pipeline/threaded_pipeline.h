@@ -31,6 +31,10 @@ struct PipelineResult {
   std::size_t dropped = 0;  ///< real time: frames the pipeline had no room for
 };
 
+/// Names the calling thread (at most 15 characters) as profilers (perf,
+/// top -H) and debuggers show it.
+void nameThread(const char* name);
+
 /// Runs `frames` (indices into `sequence`, increasing) through the threads;
 /// `consume` is called on this thread, in order. Exceptions of any stage are
 /// rethrown here after every thread has stopped.
