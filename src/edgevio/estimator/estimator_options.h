@@ -11,8 +11,8 @@ struct EstimatorOptions {
       visual_covariance_scale, imu_noise_inflation, gyro_bias_walk_inflation, accel_bias_walk_inflation, max_imu_gap_s,
       repropagate_accel_bias, repropagate_gyro_bias, init_tilt_sigma_deg, init_velocity_sigma, init_accel_bias_sigma,
       init_gyro_bias_sigma, reset_accel_bias, reset_gyro_bias, reset_velocity, time_offset_sigma_ms,
-      cam_imu_rotation_sigma_deg;
-  bool gauge_prior, first_estimate_jacobians, estimate_time_offset, estimate_cam_imu_rotation;
+      cam_imu_rotation_sigma_deg, cam_imu_translation_sigma_m;
+  bool gauge_prior, first_estimate_jacobians, estimate_time_offset, estimate_cam_imu_rotation, estimate_cam_imu_translation;
 
   EDGEVIO_OPTIONS(EstimatorOptions)
 };
@@ -79,6 +79,11 @@ EDGEVIO_OPTIONS_TABLE(EstimatorOptions,
            "IMU modes: estimate a correction of the calibration's camera-IMU rotation in the window (frames.csv "
            "cam_imu_rotation_correction_deg)"),
     number("cam_imu_rotation_sigma_deg", &S::cam_imu_rotation_sigma_deg, 2.0, "deg",
-           "prior std. dev. of that correction's angle about each axis", above(0)))
+           "prior std. dev. of that correction's angle about each axis", above(0)),
+    number("estimate_cam_imu_translation", &S::estimate_cam_imu_translation, false, "-",
+           "IMU modes: estimate a correction of the calibration's camera-IMU translation (the lever arm) in the window "
+           "(frames.csv cam_imu_translation_correction_m); it needs rotation about more than one axis to be observable"),
+    number("cam_imu_translation_sigma_m", &S::cam_imu_translation_sigma_m, 0.02, "m",
+           "prior std. dev. of that correction along each axis", above(0)))
 
 }  // namespace edgevio::estimator

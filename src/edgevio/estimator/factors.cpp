@@ -7,12 +7,12 @@ namespace edgevio::estimator {
 using geometry::SE3;
 
 Vec6 relativePoseResidual(const SE3& T_meas, const imu::NavState& r, const imu::NavState& n, const SE3& T_b_c,
-                          Mat6x15* J_r, Mat6x15* J_n, Mat6x3* J_extrinsic_rotation) {
+                          Mat6x15* J_r, Mat6x15* J_n, Mat6* J_extrinsics) {
   const SE3 X_r(r.R_w_b, r.p_w), X_n(n.R_w_b, n.p_w);
   const SE3 A = T_b_c.inverse();
   const SE3 T_pred = A * X_n.inverse() * X_r * T_b_c;
   const Vec6 res = (T_meas.inverse() * T_pred).log();
-  if (J_r || J_n || J_extrinsic_rotation) {
+  if (J_r || J_n || J_extrinsics) {
     const Mat6 JrInv = SE3::rightJacobianInverse(res);
     const Mat6 AdA = A.adjoint();
     const auto toState = [](const imu::NavState& s, const Mat6& d_dxi) {
@@ -24,8 +24,7 @@ Vec6 relativePoseResidual(const SE3& T_meas, const imu::NavState& r, const imu::
     };
     if (J_r) *J_r = toState(r, JrInv * AdA);
     if (J_n) *J_n = toState(n, -JrInv * T_pred.inverse().adjoint() * AdA);
-    if (J_extrinsic_rotation)
-      *J_extrinsic_rotation = (JrInv * (Mat6::Identity() - T_pred.inverse().adjoint())).rightCols<3>();
+    if (J_extrinsics) *J_extrinsics = JrInv * (Mat6::Identity() - T_pred.inverse().adjoint());
   }
   return res;
 }

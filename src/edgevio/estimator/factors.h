@@ -9,7 +9,6 @@
 namespace edgevio::estimator {
 
 using Mat6x15 = Eigen::Matrix<double, 6, 15>;
-using Mat6x3 = Eigen::Matrix<double, 6, 3>;
 
 /// A tracking (or loop-closure) link (eq 19): the measured relative pose
 /// T_nr of camera n relative to camera r (maps points from r's camera frame
@@ -25,12 +24,11 @@ struct RelativePoseLink {
 /// T_pred·Exp(Ad_A ξ) and X_n·Exp(ξ) gives T_pred·Exp(−Ad_{T_pred⁻¹} Ad_A ξ), so
 /// ∂r/∂ξ_r = Jr⁻¹(r) Ad_A and ∂r/∂ξ_n = −Jr⁻¹(r) Ad_{T_pred⁻¹} Ad_A; a state's
 /// (δp, δθ) is the twist (Rᵀδp, δθ). The extrinsics perturbed on the right,
-/// T_b_c·Exp((0, δφ)), make A = Exp(−ζ)·A and T_pred = Exp(−ζ)·T_pred·Exp(ζ) =
-/// T_pred·Exp((I − Ad_{T_pred⁻¹}) ζ): ∂r/∂δφ is the rotation columns of
-/// Jr⁻¹(r)(I − Ad_{T_pred⁻¹}).
+/// T_b_c·Exp(ζ), make A = Exp(−ζ)·A and T_pred = Exp(−ζ)·T_pred·Exp(ζ) =
+/// T_pred·Exp((I − Ad_{T_pred⁻¹}) ζ): ∂r/∂ζ = Jr⁻¹(r)(I − Ad_{T_pred⁻¹}).
 Vec6 relativePoseResidual(const geometry::SE3& T_nr_measured, const imu::NavState& r, const imu::NavState& n,
                           const geometry::SE3& T_b_c, Mat6x15* J_r = nullptr, Mat6x15* J_n = nullptr,
-                          Mat6x3* J_extrinsic_rotation = nullptr);
+                          Mat6* J_extrinsics = nullptr);
 
 /// Huber scaling of a link's information (eqs 24-25): the translation block
 /// by c_t/‖e_t‖ when ‖e_t‖ > c_t, the rotation block by c_a/‖e_θ‖ when ‖e_θ‖ > c_a

@@ -39,6 +39,7 @@ CalibrationState boxplus(const CalibrationState& c, const Eigen::Ref<const Vec15
   CalibrationState o = c;
   o.time_offset_s += d(kCalibTimeOffset);
   o.R_correction = c.R_correction * SO3::exp(d.segment<3>(kCalibRotation));
+  o.t_correction = c.t_correction + c.R_correction * d.segment<3>(kCalibTranslation);
   return o;
 }
 
@@ -46,12 +47,13 @@ Vec15 boxminus(const CalibrationState& c, const CalibrationState& c0) {
   Vec15 d = Vec15::Zero();
   d(kCalibTimeOffset) = c.time_offset_s - c0.time_offset_s;
   d.segment<3>(kCalibRotation) = (c0.R_correction.inverse() * c.R_correction).log();
+  d.segment<3>(kCalibTranslation) = c0.R_correction.inverse() * (c.t_correction - c0.t_correction);
   return d;
 }
 
 geometry::SE3 cameraExtrinsics(const Window& w) {
   if (!w.calibration) return w.T_b_c;
-  return w.T_b_c * geometry::SE3(w.calibration->R_correction, Vec3::Zero());
+  return w.T_b_c * geometry::SE3(w.calibration->R_correction, w.calibration->t_correction);
 }
 
 namespace {
@@ -164,15 +166,16 @@ Vec6 visualResidual(const Window& w, const VisualLink& l, const NavState& xr, co
   if (!w.calibration) return relativePoseResidual(l.link.T_nr, xr, xn, w.T_b_c, Jr, Jn);
   const CalibrationState& c = *w.calibration;
   const NavState r = atCaptureTime(w.states[l.r], xr, c), n = atCaptureTime(w.states[l.n], xn, c);
-  Mat6x3 J_rotation;
-  const Vec6 res = relativePoseResidual(l.link.T_nr, r, n, cameraExtrinsics(w), Jr, Jn, Jc ? &J_rotation : nullptr);
+  Mat6 J_extrinsics;
+  const Vec6 res = relativePoseResidual(l.link.T_nr, r, n, cameraExtrinsics(w), Jr, Jn, Jc ? &J_extrinsics : nullptr);
   if (Jc) {
     Jc->setZero();
     const auto twistColumn = [](const Mat6x15& J, const NavState& x, const WindowState& s) -> Vec6 {
       return J.block<6, 3>(0, imu::kP) * x.v_w + J.block<6, 3>(0, imu::kR) * (s.gyro - x.b_g);
     };
     if (c.time_offset) Jc->col(kCalibTimeOffset) = twistColumn(*Jr, r, w.states[l.r]) + twistColumn(*Jn, n, w.states[l.n]);
-    if (c.rotation) Jc->block<6, 3>(0, kCalibRotation) = J_rotation;
+    if (c.rotation) Jc->block<6, 3>(0, kCalibRotation) = J_extrinsics.rightCols<3>();
+    if (c.translation) Jc->block<6, 3>(0, kCalibTranslation) = J_extrinsics.leftCols<3>();
   }
   return res;
 }
@@ -184,6 +187,8 @@ void addCalibrationPrior(const CalibrationState& c, long slot, Normal* n) {
   Vec15 info = Vec15::Ones();
   info(kCalibTimeOffset) = c.time_offset ? 1.0 / (c.time_offset_sigma_s * c.time_offset_sigma_s) : 1.0;
   info.segment<3>(kCalibRotation).setConstant(c.rotation ? 1.0 / (c.rotation_sigma_rad * c.rotation_sigma_rad) : 1.0);
+  info.segment<3>(kCalibTranslation)
+      .setConstant(c.translation ? 1.0 / (c.translation_sigma_m * c.translation_sigma_m) : 1.0);
   n->cost += 0.5 * d.dot(info.cwiseProduct(d));
   if (n->cost_only) return;
   n->g.segment<15>(15 * slot) += info.cwiseProduct(d);

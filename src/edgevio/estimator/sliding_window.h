@@ -32,21 +32,24 @@ struct WindowState {
 };
 
 /// The camera-IMU calibration the window estimates beside its states
-/// (options estimate_time_offset, estimate_cam_imu_rotation): the time offset
-/// (IMU time minus camera time) and a rotation correction of the body-camera
-/// extrinsics, T_b_c = T_b_c(calibration)·(R_correction, 0), both relative to
-/// the calibration file's. Its error is padded to a state's 15 dimensions,
-/// [δt, δφ, 11 unused], so that the window's block algebra (envelope Cholesky,
-/// Schur complement) handles it as one more block; a direction not estimated
-/// (and every unused one) has unit information and never moves.
+/// (options estimate_time_offset, estimate_cam_imu_rotation,
+/// estimate_cam_imu_translation): the time offset (IMU time minus camera
+/// time) and a correction of the body-camera extrinsics,
+/// T_b_c = T_b_c(calibration)·(R_correction, t_correction), relative to the
+/// calibration file's. Its error is padded to a state's 15 dimensions,
+/// [δt, δφ, δp, 8 unused] (the correction perturbed on the right:
+/// R ← R·Exp(δφ), t ← t + R·δp), so that the window's block algebra (envelope
+/// Cholesky, Schur complement) handles it as one more block; a direction not
+/// estimated (and every unused one) has unit information and never moves.
 struct CalibrationState {
-  bool time_offset = false, rotation = false;  ///< which are estimated
+  bool time_offset = false, rotation = false, translation = false;  ///< which are estimated
   double time_offset_s = 0.0;
   geometry::SO3 R_correction;
+  Vec3 t_correction = Vec3::Zero();
   /// The calibration file's uncertainty: a prior ½(δ/σ)² on each, around zero.
-  double time_offset_sigma_s = 0.01, rotation_sigma_rad = 0.035;
+  double time_offset_sigma_s = 0.01, rotation_sigma_rad = 0.035, translation_sigma_m = 0.02;
 };
-inline constexpr long kCalibTimeOffset = 0, kCalibRotation = 1;
+inline constexpr long kCalibTimeOffset = 0, kCalibRotation = 1, kCalibTranslation = 4;
 
 /// Preintegration between states i and j (indices into Window::states).
 struct InertialLink {

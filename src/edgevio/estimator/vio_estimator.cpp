@@ -30,12 +30,14 @@ VioEstimator::VioEstimator(const EstimatorOptions& options, const imu::ImuNoise&
   noise_.gyro_random_walk *= options.gyro_bias_walk_inflation;
   window_.T_b_c = T_b_c;
   window_.gauge = inertial ? Gauge::kPositionYaw : Gauge::kPose;
-  if (inertial && (options.estimate_time_offset || options.estimate_cam_imu_rotation)) {
+  if (inertial && (options.estimate_time_offset || options.estimate_cam_imu_rotation || options.estimate_cam_imu_translation)) {
     CalibrationState c;
     c.time_offset = options.estimate_time_offset;
     c.rotation = options.estimate_cam_imu_rotation;
+    c.translation = options.estimate_cam_imu_translation;
     c.time_offset_sigma_s = options.time_offset_sigma_ms * 1e-3;
     c.rotation_sigma_rad = options.cam_imu_rotation_sigma_deg * kDegToRad;
+    c.translation_sigma_m = options.cam_imu_translation_sigma_m;
     window_.calibration = c;
   }
 }

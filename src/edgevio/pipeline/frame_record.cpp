@@ -101,6 +101,11 @@ constexpr FrameColumn kColumns[] = {
          return real(r.calibration && r.calibration->rotation ? geometry::angle(r.calibration->R_correction) * kRadToDeg : kNaN);
        },
        3},
+      {"cam_imu_translation_correction_m", "m",
+       "the length of the window's correction to the calibration's camera-IMU translation "
+       "(estimator.estimate_cam_imu_translation; NaN when off)",
+       [](const R& r) { return real(r.calibration && r.calibration->translation ? r.calibration->t_correction.norm() : kNaN); },
+       4},
       {"canny_ms", "ms", "Canny on every pyramid level", [](const R& r) { return real(r.canny_ms); }, 3, false,
        {"Canny (pyramid)", "frame"}},
       {"dt_ms", "ms", "distance transform of every level", [](const R& r) { return real(r.dt_ms); }, 3, false,

@@ -90,7 +90,7 @@ struct FrameRecord {
   std::string lost_reason;          ///< why, when a loss began here
   geometry::SE3 T_w_b;                ///< the causal pose estimate of the frame
   std::optional<imu::NavState> state;  ///< the newest window state (velocity, biases) in the IMU modes
-  /// The window's camera-IMU calibration estimate (estimator.estimate_time_offset, estimate_cam_imu_rotation).
+  /// The window's camera-IMU calibration estimate (estimator.estimate_time_offset, estimate_cam_imu_*).
   std::optional<estimator::CalibrationState> calibration;
   std::vector<std::string> events;     ///< for the log and summary.json: restarts, IMU gaps, unreadable images
   /// What the frame's alignment picture is drawn from, when the driver asked for pictures (not a column).

@@ -111,6 +111,11 @@ void onlineCalibration(JsonWriter& j, const std::optional<estimator::Calibration
     j.null();
   }
   j.key("cam_imu_rotation_correction_angle_deg").value(c->rotation ? geometry::angle(c->R_correction) * kRadToDeg : kNaN);
+  j.key("cam_imu_translation_correction_m");
+  if (c->translation)
+    j.beginArray().value(c->t_correction.x()).value(c->t_correction.y()).value(c->t_correction.z()).endArray();
+  else
+    j.null();
   j.endObject();
 }
 
@@ -187,10 +192,10 @@ const std::vector<SummaryField>& summaryFields() {
        "an rtprio limit); without it a reading can wait for a core behind the frame threads",
        member<&S::imu_rate_realtime_priority>},
       {"online_calibration",
-       "the window's last camera-IMU calibration estimate (estimator.estimate_time_offset, estimate_cam_imu_rotation), or "
-       "null: {time_offset_ms (IMU time minus camera time), cam_imu_rotation_correction_deg (the correction's rotation "
-       "vector, body axes: T_b_c = T_b_c(calibration) Exp(this)), cam_imu_rotation_correction_angle_deg}; a part not "
-       "estimated is null",
+       "the window's last camera-IMU calibration estimate (estimator.estimate_time_offset, estimate_cam_imu_rotation, "
+       "estimate_cam_imu_translation), or null: {time_offset_ms (IMU time minus camera time), "
+       "cam_imu_rotation_correction_deg (the rotation vector of R in T_b_c = T_b_c(calibration) (R, t)), "
+       "cam_imu_rotation_correction_angle_deg, cam_imu_translation_correction_m (t)}; a part not estimated is null",
        [](J& j, const S& s) { onlineCalibration(j, s.calibration); }},
       {"events", "restarts, IMU gaps, unreadable images, each as \"t = … s: what\"", [](J& j, const S& s) { strings(j, s.events); }},
       {"warnings", "the dataset's warnings (missing images, IMU gaps, unpaired frames)",
