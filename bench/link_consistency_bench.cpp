@@ -16,6 +16,7 @@
 // (renders with ground truth; --imu-truth: a ground truth with velocity and
 // bias columns for the IMU part, e.g. EuRoC's groundtruth.csv beside a render
 // that replays its IMU log). Prints one markdown row per dataset and a total.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -107,6 +108,12 @@ double intraclassCorrelation(const std::map<std::int64_t, std::vector<const Link
   return (msb - msw) / (msb + (n_bar - 1) * msw);
 }
 
+double median(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
 /// Correlation of component k between consecutive links to the same keyframe.
 double consecutiveCorrelation(const std::vector<Link>& links, int k) {
   double sxy = 0, sxx = 0, syy = 0;
@@ -157,6 +164,7 @@ void analyse(const std::string& dataset, pipeline::Mode mode, const std::string&
   // The IMU between consecutive frames at the true states.
   double inertial_nees = 0;
   std::size_t inertial = 0;
+  std::vector<double> inertial_each;
   for (std::size_t i = 1; i < frame_times.size(); ++i) {
     io::TrajectorySample a, b;
     if (!truthAt(imu_gt, frame_times[i - 1], &a) || !truthAt(imu_gt, frame_times[i], &b) || !a.hasVelocityAndBias()) continue;
@@ -164,21 +172,24 @@ void analyse(const std::string& dataset, pipeline::Mode mode, const std::string&
     if (!pre) continue;
     const imu::Vec15 r = pre->residual(navState(a), navState(b));
     const Eigen::Matrix<double, 9, 9> P = pre->covariance().topLeftCorner<9, 9>();
-    inertial_nees += r.head<9>().dot(P.ldlt().solve(r.head<9>()));
+    inertial_each.push_back(r.head<9>().dot(P.ldlt().solve(r.head<9>())));
+    inertial_nees += inertial_each.back();
     ++inertial;
   }
 
   double nees = 0;
   Vec6 sum_sq = Vec6::Zero();
   std::map<std::int64_t, std::vector<const Link*>> by_keyframe;
+  std::vector<double> link_each;
   for (const Link& l : links) {
+    link_each.push_back(l.nees);
     nees += l.nees;
     sum_sq += l.normalised.cwiseAbs2();
     by_keyframe[l.t_ref_ns].push_back(&l);
   }
   const double m = static_cast<double>(std::max<std::size_t>(links.size(), 1));
-  std::printf("| %s | %zu | %.1f | %.2f %.2f %.2f | %.2f %.2f %.2f | %.2f %.2f | %.2f %.2f | %.2f |\n",
-              std::filesystem::path(dataset).filename().c_str(), links.size(), nees / m, std::sqrt(sum_sq[0] / m),
+  std::printf("| %s | %zu | %.1f (%.1f) | %.2f %.2f %.2f | %.2f %.2f %.2f | %.2f %.2f | %.2f %.2f | %.2f (%.2f) |\n",
+              std::filesystem::path(dataset).filename().c_str(), links.size(), nees / m, median(link_each), std::sqrt(sum_sq[0] / m),
               std::sqrt(sum_sq[1] / m), std::sqrt(sum_sq[2] / m), std::sqrt(sum_sq[3] / m), std::sqrt(sum_sq[4] / m),
               std::sqrt(sum_sq[5] / m), (intraclassCorrelation(by_keyframe, 0) + intraclassCorrelation(by_keyframe, 1) +
                                         intraclassCorrelation(by_keyframe, 2)) / 3,
@@ -186,7 +197,7 @@ void analyse(const std::string& dataset, pipeline::Mode mode, const std::string&
                intraclassCorrelation(by_keyframe, 5)) / 3,
               (consecutiveCorrelation(links, 0) + consecutiveCorrelation(links, 1) + consecutiveCorrelation(links, 2)) / 3,
               (consecutiveCorrelation(links, 3) + consecutiveCorrelation(links, 4) + consecutiveCorrelation(links, 5)) / 3,
-              inertial ? inertial_nees / static_cast<double>(inertial) : std::nan(""));
+              inertial ? inertial_nees / static_cast<double>(inertial) : std::nan(""), median(inertial_each));
   std::fflush(stdout);
   totals->links += links.size();
   totals->nees += nees;
@@ -224,9 +235,10 @@ int main(int argc, char** argv) {
   std::printf("mode %s; NEES against the alignment's covariance (JtWJ)^-1 (6 if consistent; the window uses it x "
               "estimator.visual_covariance_scale); RMS of e_k/sigma_k per component (1 if consistent); "
               "intraclass correlation by keyframe and correlation of consecutive links to one keyframe (0 if "
-              "independent); IMU NEES of the motion block at the calibration's densities (9 if consistent)\n\n",
+              "independent); IMU NEES of the motion block at the calibration's densities (9 if consistent). The median of a "
+              "consistent NEES is 5.35 (6 dof) and 8.34 (9 dof)\n\n",
               pipeline::modeName(mode).c_str());
-  std::printf("| dataset | links | NEES | RMS z: tx ty tz | rx ry rz | ICC t, r | consecutive t, r | IMU NEES |\n");
+  std::printf("| dataset | links | NEES mean (median) | RMS e/sigma: tx ty tz | rx ry rz | ICC t, r | consecutive t, r | IMU NEES mean (median) |\n");
   std::printf("|---|---:|---:|---|---|---|---|---:|\n");
   Totals t;
   for (const std::string& d : datasets) analyse(d, mode, imu_truth, &t);
