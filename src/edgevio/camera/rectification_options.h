@@ -10,8 +10,6 @@ struct RectificationOptions {
   EDGEVIO_OPTIONS(RectificationOptions)
 };
 
-EDGEVIO_OPTIONS_TABLE(RectificationOptions,
-    number("alpha", &S::alpha, 0.0, "-", "free scaling of stereoRectify: 0 keeps only valid pixels (paper), 1 keeps every pixel",
-           closed(0, 1)))
+// RectificationOptions's keys, defaults, units, meanings and valid values: its table in rectification_options.cpp.
 
 }  // namespace edgevio::camera

@@ -11,11 +11,6 @@ struct BackLinkOptions {
   EDGEVIO_OPTIONS(BackLinkOptions)
 };
 
-EDGEVIO_OPTIONS_TABLE(BackLinkOptions,
-    number("keyframes", &S::keyframes, 2, "-",
-           "window modes: each new keyframe's points are aligned back into this many keyframes before it", atLeast(0)),
-    number("max_disagreement_m", &S::max_disagreement_m, 0.05, "m",
-           "a back link must agree with the estimated relative pose within this translation", above(0)),
-    number("max_disagreement_deg", &S::max_disagreement_deg, 1.5, "deg", "... and this rotation", above(0)))
+// BackLinkOptions's keys, defaults, units, meanings and valid values: its table in back_link_options.cpp.
 
 }  // namespace edgevio::loop

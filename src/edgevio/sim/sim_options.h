@@ -18,42 +18,6 @@ struct SimOptions {
   EDGEVIO_OPTIONS(SimOptions)
 };
 
-EDGEVIO_OPTIONS_TABLE(SimOptions,
-    number("knot_dt_s", &S::knot_dt_s, 0.01, "s",
-           "spline control-point spacing, never below a trajectory file's median sample spacing (wider smooths away motion "
-           "a replayed real IMU measured)",
-           closed(0.005, 0.5)),
-    number("max_trajectory_gap_s", &S::max_trajectory_gap_s, 0.1, "s", "a longer gap in a trajectory file is an error", above(0)),
-    number("trajectory_max_accel_mps2", &S::trajectory_max_accel_mps2, 50.0, "m/s^2",
-           "a trajectory file's position step (a tracker glitch) is removed where a sample's velocity differs from its "
-           "neighbours' median by more than this x dt",
-           above(0).orOff()),
-    number("trajectory_step_spread_s", &S::trajectory_step_spread_s, 1.0, "s",
-           "a removed step's offset comes back as a ramp this long, so the motion follows the file in the long run", above(0)),
-    number("static_start_s", &S::static_start_s, 1.0, "s", "standstill at the start of every built-in scenario", atLeast(0)),
-    number("scenario_duration_s", &S::scenario_duration_s, 30.0, "s", "scenario length when --duration is not given", above(0)),
-    nested(&S::scene, SceneOptions::table()),
-    number("exposure_gain", &S::exposure_gain, 0.7, "-", "radiance to image scale (0.7: a typical wall near mid-grey)", above(0)),
-    number("image_noise_sigma", &S::image_noise_sigma, 2.0, "DN", "sensor read noise (with --noise on)", atLeast(0)),
-    number("vignetting", &S::vignetting, 0.2, "-", "brightness loss at the image corners (V = 1 - k r^2)", halfOpen(0, 1)),
-    number("stereo_brightness_mismatch", &S::stereo_brightness_mismatch, 0.04, "-", "right camera gain = left gain x (1 + this)"),
-    number("exposure_drift_amplitude", &S::exposure_drift_amplitude, 0.25, "-",
-           "auto-exposure gain drift, fraction (with --exposure-changes)", halfOpen(0, 1)),
-    number("exposure_drift_period_s", &S::exposure_drift_period_s, 6.0, "s", "period of the auto-exposure drift", above(0)),
-    number("lighting_change_interval_s", &S::lighting_change_interval_s, 3.0, "s", "mean time between sudden lighting changes",
-           above(0)),
-    number("lighting_change_magnitude", &S::lighting_change_magnitude, 0.5, "-",
-           "a lighting change scales the lights by [1-m, 1+m]", halfOpen(0, 1)),
-    number("blur_substep_ms", &S::blur_substep_ms, 2.0, "ms", "time between sub-frames integrated for motion blur", above(0)),
-    number("initial_gyro_bias_sigma", &S::initial_gyro_bias_sigma, 0.003, "rad/s", "std. dev. of the initial gyroscope bias",
-           atLeast(0)),
-    number("initial_accel_bias_sigma", &S::initial_accel_bias_sigma, 0.05, "m/s^2", "std. dev. of the initial accelerometer bias",
-           atLeast(0)),
-    number("imu_time_offset_ms", &S::imu_time_offset_ms, 0.0, "ms",
-           "the IMU's clock minus the cameras': a reading taken at time t is stamped t + this (a rig whose clocks "
-           "disagree; `edgevio doctor` measures it)",
-           closed(-1000, 1000)),
-    number("png_compression", &S::png_compression, 1, "-", "zlib level of the PNG files (speed against size)", closed(0, 9)),
-    number("threads", &S::threads, 2, "-", "rendering threads (the output is the same for any value)", closed(1, 64)))
+// SimOptions's keys, defaults, units, meanings and valid values: its table in sim_options.cpp.
 
 }  // namespace edgevio::sim
