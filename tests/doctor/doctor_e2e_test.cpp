@@ -143,7 +143,7 @@ TEST(Doctor, TheWindowFindsTheSameOffsetAndRotationOnline) {
   const geometry::SO3 R_true = rig.T_b_c[0].so3();
   const geometry::SE3 error(geometry::SO3::exp(2.0 * kDegToRad * Vec3(0.3, -1.0, 0.5).normalized()), Vec3::Zero());
   for (auto& T : rig.T_b_c) T = error * T;
-  TempDir data, off_dir, on_dir;
+  TempDir data, on_dir;
   const std::string dataset = withCalibration(render().dataset, data.file("data"), rig);
   const auto ate = [&](const TempDir& out, const char* file = "trajectory_tum.txt") {
     return eval::evaluate(io::readTrajectory(render().dataset + "/mav0/state_groundtruth_estimate0/data.csv"),
@@ -151,23 +151,20 @@ TEST(Doctor, TheWindowFindsTheSameOffsetAndRotationOnline) {
         .ate_rmse_m;
   };
   Config config;
-  const pipeline::RunSummary off = pipeline::run(pipeline::RunRequest(dataset, off_dir.path()), config);
   config.estimator.estimate_time_offset = config.estimator.estimate_cam_imu_rotation = true;
   const pipeline::RunSummary on = pipeline::run(pipeline::RunRequest(dataset, on_dir.path()), config);
   ASSERT_FALSE(on.failed) << on.failure;
   ASSERT_TRUE(on.calibration.has_value());
-  EXPECT_FALSE(off.calibration.has_value());
   const geometry::SO3 R_estimated = rig.T_b_c[0].so3() * on.calibration->R_correction;
   const double left_deg = geometry::angle(R_estimated.inverse() * R_true) / kDegToRad;
-  std::printf("online: time offset %.3f ms, camera-IMU rotation %.3f deg from the truth (2 deg before); ATE %.4f m "
-              "(not estimated: %.4f m)\n",
-              1e3 * on.calibration->time_offset_s, left_deg, ate(on_dir), ate(off_dir));
-  // Measured: 15.004 ms, 0.025 deg; ATE 0.009 m against 1.28 m. The bounds
-  // are those of the estimator's own tests (tests/estimator/vio_estimator_test.cpp).
+  std::printf("online: time offset %.3f ms, camera-IMU rotation %.3f deg from the truth (2 deg before); ATE %.4f m\n",
+              1e3 * on.calibration->time_offset_s, left_deg, ate(on_dir));
+  // Measured: 15.004 ms, 0.025 deg; ATE 0.009 m (1.28 m not estimated:
+  // docs/experiments/2026-12-03-online-calibration.md). The bounds are those
+  // of the estimator's own tests (tests/estimator/vio_estimator_test.cpp).
   EXPECT_NEAR(1e3 * on.calibration->time_offset_s, kClockOffsetMs, 0.3);
   EXPECT_LT(left_deg, 0.25);
   EXPECT_LT(ate(on_dir), 0.05);
-  EXPECT_LT(ate(on_dir), ate(off_dir) / 3.0);
   // The IMU-rate poses are stamped in the camera's clock too (the IMU's
   // readings less the offset): 15 ms late they would be ~3 cm off at 2 m/s.
   const double imu_rate_ate = ate(on_dir, "trajectory_imu_rate_tum.txt");

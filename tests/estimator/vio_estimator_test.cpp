@@ -145,13 +145,16 @@ double extrinsicRotationErrorDeg(const RunStats& st, const Scenario& sc) {
   return geometry::angle(st.T_b_c.so3().inverse() * sc.rig.T_b_c[0].so3()) * kRadToDeg;
 }
 
-// Tolerances of the tests below, from seeds 5-7 (10 s of the aggressive
-// scenario, links of 3 mm and 0.17 deg): the time offset came within
-// 0.07 ms of the truth, the rotation within 0.06 deg, the translation within
-// 0.8 mm, and the position error stayed that of a calibrated rig (<= 0.032 m;
-// 0.05 m is FollowsAggressiveMotion's bound). The bounds are four to five
-// times the worst.
+// The tests below drive 6 s (120 frames) of the aggressive scenario with
+// links of 3 mm and 0.17 deg. Over seeds 5-12 the time offset came within
+// 0.13 ms of the truth, the rotation within 0.045 deg and the translation
+// within 1.8 mm, in every combination below, and the position error stayed
+// that of a calibrated rig (<= 0.038 m; 0.05 m is FollowsAggressiveMotion's
+// bound). The bounds are 2-5 times the worst of the eight; the tests run
+// two seeds. Not estimated, the errors show within 4 s (80 frames).
 constexpr double kTimeOffsetToleranceMs = 0.3, kRotationToleranceDeg = 0.25, kTranslationToleranceM = 0.004;
+constexpr int kCalibrationFrames = 120, kUncalibratedFrames = 80;
+constexpr std::uint64_t kCalibrationSeeds[] = {5, 6};
 
 TEST(VioEstimator, EstimatesTheCameraImuTimeOffset) {
   const Scenario sc("aggressive");
@@ -159,12 +162,12 @@ TEST(VioEstimator, EstimatesTheCameraImuTimeOffset) {
   wrong.clock_offset_s = 0.015;
   // Not estimated, 15 ms at up to ~4 m/s and ~5 rad/s puts the links
   // centimetres and degrees from the IMU: the external check drops them.
-  const RunStats off = drive(sc, 0.003, 0.003, 200, testOptions(), wrong);
+  const RunStats off = drive(sc, 0.003, 0.003, kUncalibratedFrames, testOptions(), wrong);
   std::printf("15 ms offset, not estimated: %d links rejected, max position error %.4f m\n", off.rejected_links,
               off.max_position_error);
-  EXPECT_GT(off.rejected_links, 0);
-  for (std::uint64_t seed : {5, 6, 7}) {
-    const RunStats on = drive(sc, 0.003, 0.003, 200, calibrating(true, false), wrong, seed);
+  EXPECT_GT(off.rejected_links, kUncalibratedFrames / 2);
+  for (const std::uint64_t seed : kCalibrationSeeds) {
+    const RunStats on = drive(sc, 0.003, 0.003, kCalibrationFrames, calibrating(true, false), wrong, seed);
     ASSERT_TRUE(on.calibration.has_value());
     std::printf("seed %llu: estimated %.3f ms; max position error %.4f m, %d links rejected\n",
                 static_cast<unsigned long long>(seed), 1e3 * on.calibration->time_offset_s, on.max_position_error,
@@ -174,31 +177,16 @@ TEST(VioEstimator, EstimatesTheCameraImuTimeOffset) {
   }
 }
 
-TEST(VioEstimator, EstimatesTheCameraImuRotation) {
+TEST(VioEstimator, EstimatesTheCameraImuRotationAndTranslation) {
   const Scenario sc("aggressive");
   Miscalibration wrong;
   wrong.rotation_error = SO3::exp(2.0 * kDegToRad * Vec3(0.3, -1.0, 0.5).normalized());
-  const RunStats off = drive(sc, 0.003, 0.003, 200, testOptions(), wrong);
-  std::printf("2 deg rotation error, not estimated: max position error %.4f m\n", off.max_position_error);
-  EXPECT_GT(off.max_position_error, 0.05);
-  for (std::uint64_t seed : {5, 6, 7}) {
-    const RunStats on = drive(sc, 0.003, 0.003, 200, calibrating(false, true), wrong, seed);
-    std::printf("seed %llu: %.3f deg left; max position error %.4f m\n", static_cast<unsigned long long>(seed),
-                extrinsicRotationErrorDeg(on, sc), on.max_position_error);
-    EXPECT_LT(extrinsicRotationErrorDeg(on, sc), kRotationToleranceDeg);
-    EXPECT_LT(on.max_position_error, 0.05);
-  }
-}
-
-TEST(VioEstimator, EstimatesTheCameraImuTranslation) {
-  const Scenario sc("aggressive");
-  Miscalibration wrong;
   wrong.translation_error = Vec3(0.02, -0.03, 0.01);  // 3.7 cm of lever arm
-  const RunStats off = drive(sc, 0.003, 0.003, 200, testOptions(), wrong);
-  std::printf("3.7 cm translation error, not estimated: max position error %.4f m\n", off.max_position_error);
+  const RunStats off = drive(sc, 0.003, 0.003, kUncalibratedFrames, testOptions(), wrong);
+  std::printf("2 deg and 3.7 cm off, not estimated: max position error %.4f m\n", off.max_position_error);
   EXPECT_GT(off.max_position_error, 0.05);
-  for (std::uint64_t seed : {5, 6, 7}) {
-    const RunStats on = drive(sc, 0.003, 0.003, 200, calibrating(false, true, true), wrong, seed);
+  for (const std::uint64_t seed : kCalibrationSeeds) {
+    const RunStats on = drive(sc, 0.003, 0.003, kCalibrationFrames, calibrating(false, true, true), wrong, seed);
     const double left_m = (on.T_b_c.translation() - sc.rig.T_b_c[0].translation()).norm();
     std::printf("seed %llu: %.4f m left, %.3f deg; max position error %.4f m\n", static_cast<unsigned long long>(seed), left_m,
                 extrinsicRotationErrorDeg(on, sc), on.max_position_error);
@@ -208,13 +196,13 @@ TEST(VioEstimator, EstimatesTheCameraImuTranslation) {
   }
 }
 
-TEST(VioEstimator, EstimatesBothTogetherAndStaysAtZeroOnACalibratedRig) {
+TEST(VioEstimator, EstimatesOffsetAndRotationTogetherAndStaysAtZeroOnACalibratedRig) {
   const Scenario sc("aggressive");
   Miscalibration wrong;
   wrong.clock_offset_s = -0.010;
   wrong.rotation_error = SO3::exp(1.5 * kDegToRad * Vec3(-1.0, 0.2, 0.4).normalized());
-  const RunStats both = drive(sc, 0.003, 0.003, 200, calibrating(true, true), wrong, 8);
-  const RunStats right = drive(sc, 0.003, 0.003, 200, calibrating(true, true), Miscalibration{}, 8);
+  const RunStats both = drive(sc, 0.003, 0.003, kCalibrationFrames, calibrating(true, true), wrong, 8);
+  const RunStats right = drive(sc, 0.003, 0.003, kCalibrationFrames, calibrating(true, true), Miscalibration{}, 8);
   ASSERT_TRUE(both.calibration && right.calibration);
   std::printf("-10 ms and 1.5 deg: estimated %.3f ms, %.3f deg left; calibrated rig: %.3f ms, %.3f deg\n",
               1e3 * both.calibration->time_offset_s, extrinsicRotationErrorDeg(both, sc), 1e3 * right.calibration->time_offset_s,

@@ -78,26 +78,34 @@ TEST(KeyframeDepth, ReferencePointsSitOnTheSubPixelEdge) {
   EXPECT_LT(worst, 0.25);
 }
 
-/// Estimated / true depth of the level-0 reference points over smooth
-/// surfaces (true depth within 3 % in a 7x7 window; at occlusion boundaries
-/// block matching fattens the foreground) on frames of the figure8 render;
-/// with `anywhere`, of every reference point.
-std::vector<double> depthRatiosOnSmoothSurfaces(const test::RenderFixture& fx, const VisionOptions& o, bool anywhere = false) {
+/// A level-0 reference point's estimated / true depth, and whether it lies
+/// on a smooth surface (true depth within 3 % in a 7x7 window; at occlusion
+/// boundaries block matching fattens the foreground).
+struct DepthRatio {
+  double ratio;
+  bool smooth;
+};
+
+/// The depth ratios of every reference point on frames of the figure8
+/// render, one list per option set; each frame is rendered once for all.
+std::vector<std::vector<DepthRatio>> depthRatios(const test::RenderFixture& fx, const std::vector<VisionOptions>& options) {
   const camera::CameraModel& cam = fx.rectifier().rectifiedCamera();
-  std::vector<double> ratios;
+  std::vector<std::vector<DepthRatio>> ratios(options.size());
   for (std::size_t k = 300; k < fx.path().size(); k += 300) {
     const geometry::SE3& T_w_b = fx.path()[k].T_w_b;
     const tracking::StereoFrame f = fx.frame(T_w_b);
     const cv::Mat z_true = fx.rectifiedDepth(T_w_b);
-    const EdgePyramid pyr = buildEdgePyramid(f.left, cam, o);
-    const KeyframeDepth depth = computeKeyframeDepth(pyr, f.right.get(), fx.rectifier().baseline(), o);
-    for (const Eigen::Vector3f& P : depth.points[0]) {
-      const auto u = static_cast<int>(std::lround(cam.fx * P.x() / P.z() + cam.cx));
-      const auto v = static_cast<int>(std::lround(cam.fy * P.y() / P.z() + cam.cy));
-      if (u < 3 || v < 3 || u >= z_true.cols - 3 || v >= z_true.rows - 3) continue;
-      double lo, hi;
-      cv::minMaxLoc(z_true(cv::Rect(u - 3, v - 3, 7, 7)), &lo, &hi);
-      if (anywhere || hi - lo < 0.03 * lo) ratios.push_back(P.z() / z_true.at<float>(v, u));
+    for (std::size_t i = 0; i < options.size(); ++i) {
+      const EdgePyramid pyr = buildEdgePyramid(f.left, cam, options[i]);
+      const KeyframeDepth depth = computeKeyframeDepth(pyr, f.right.get(), fx.rectifier().baseline(), options[i]);
+      for (const Eigen::Vector3f& P : depth.points[0]) {
+        const auto u = static_cast<int>(std::lround(cam.fx * P.x() / P.z() + cam.cx));
+        const auto v = static_cast<int>(std::lround(cam.fy * P.y() / P.z() + cam.cy));
+        if (u < 3 || v < 3 || u >= z_true.cols - 3 || v >= z_true.rows - 3) continue;
+        double lo, hi;
+        cv::minMaxLoc(z_true(cv::Rect(u - 3, v - 3, 7, 7)), &lo, &hi);
+        ratios[i].push_back({P.z() / z_true.at<float>(v, u), hi - lo < 0.03 * lo});
+      }
     }
   }
   return ratios;
@@ -116,7 +124,10 @@ TEST(KeyframeDepth, DepthOnARenderedSceneIsUnbiased) {
   // the EuRoC renders' motion came out 0.4-0.6 % short. The median must be
   // within 0.15 %, the spread of the per-frame medians here.
   const test::RenderFixture fx;
-  const std::vector<double> ratios = depthRatiosOnSmoothSurfaces(fx, VisionOptions{});
+  const std::vector<DepthRatio> all = depthRatios(fx, {VisionOptions{}})[0];
+  std::vector<double> ratios;
+  for (const DepthRatio& r : all)
+    if (r.smooth) ratios.push_back(r.ratio);
   ASSERT_GE(ratios.size(), 10000u);
   EXPECT_NEAR(median(ratios), 1.0, 0.0015);
 }
@@ -132,17 +143,18 @@ TEST(KeyframeDepth, NoReferencePointsAtDepthDiscontinuities) {
   const test::RenderFixture fx;
   VisionOptions off;
   off.stereo_discontinuity_ratio = 0.0;
-  const auto wrongShare = [&](const VisionOptions& o, std::size_t* count) {
-    const std::vector<double> r = depthRatiosOnSmoothSurfaces(fx, o, true);
-    *count = r.size();
-    std::size_t wrong = 0;
-    for (const double x : r) wrong += std::abs(x - 1.0) > 0.1;
+  const std::vector<std::vector<DepthRatio>> ratios = depthRatios(fx, {VisionOptions{}, off});
+  // The share of points off by more than 10 %, and the number on smooth surfaces.
+  const auto wrongShare = [](const std::vector<DepthRatio>& r) {
+    const auto wrong = std::count_if(r.begin(), r.end(), [](const DepthRatio& x) { return std::abs(x.ratio - 1.0) > 0.1; });
     return static_cast<double>(wrong) / static_cast<double>(r.size());
   };
-  std::size_t n_on = 0, n_off = 0;
-  const double wrong_on = wrongShare(VisionOptions{}, &n_on), wrong_off = wrongShare(off, &n_off);
-  const std::size_t smooth_on = depthRatiosOnSmoothSurfaces(fx, VisionOptions{}).size();
-  const std::size_t smooth_off = depthRatiosOnSmoothSurfaces(fx, off).size();
+  const auto smooth = [](const std::vector<DepthRatio>& r) {
+    return static_cast<std::size_t>(std::count_if(r.begin(), r.end(), [](const DepthRatio& x) { return x.smooth; }));
+  };
+  const double wrong_on = wrongShare(ratios[0]), wrong_off = wrongShare(ratios[1]);
+  const std::size_t n_on = ratios[0].size(), n_off = ratios[1].size();
+  const std::size_t smooth_on = smooth(ratios[0]), smooth_off = smooth(ratios[1]);
   std::printf("points off by > 10 %%: %.2f %% of %zu with the discontinuity test, %.2f %% of %zu without; smooth-surface points kept %zu of %zu\n",
               100 * wrong_on, n_on, 100 * wrong_off, n_off, smooth_on, smooth_off);
   EXPECT_LT(wrong_on, 0.5 * wrong_off);
