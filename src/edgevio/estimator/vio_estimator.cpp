@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 
-#include "edgevio/common/time.h"
 #include "edgevio/imu/preintegration.h"
 
 namespace edgevio::estimator {
@@ -42,15 +41,10 @@ VioEstimator::VioEstimator(const EstimatorOptions& options, const imu::ImuNoise&
   }
 }
 
-std::int64_t VioEstimator::imuTime(std::int64_t camera_t_ns) const {
-  if (!window_.calibration) return camera_t_ns;
-  return camera_t_ns + toNanoseconds(window_.calibration->time_offset_s);
-}
-
 void VioEstimator::initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known, bool attitude_known) {
   // The calibration's estimate outlives a restart; what the marginalised states said of it does not.
   window_ = Window{{}, {}, {}, {}, window_.T_b_c, window_.gauge, window_.calibration};
-  window_.states.push_back({t_ns, x, window_.calibration ? window_.calibration->time_offset_s : 0.0, Vec3::Zero()});
+  window_.states.push_back({t_ns, x, timeOffset(), Vec3::Zero()});
   predicted_newest_ = x;
   // Initial prior (METHOD.md §5 initialisation): position and yaw are the
   // gauge and stay free. Roll and pitch, when known (from the mean
@@ -124,7 +118,7 @@ void VioEstimator::addState(std::int64_t t_ns, imu::Preintegration pre) {
   const std::size_t i = window_.states.size() - 1;
   predicted_newest_ = imu::predictState(window_.states[i].x, pre);
   window_.states.push_back(
-      {t_ns, predicted_newest_, window_.calibration ? window_.calibration->time_offset_s : 0.0, pre.lastGyro()});
+      {t_ns, predicted_newest_, timeOffset(), pre.lastGyro()});
   window_.inertial.push_back({i, i + 1, std::move(pre)});
 }
 

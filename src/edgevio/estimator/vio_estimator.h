@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "edgevio/common/time.h"
 #include "edgevio/estimator/estimator_options.h"
 #include "edgevio/estimator/external_check.h"
 #include "edgevio/estimator/sliding_window.h"
@@ -81,8 +82,10 @@ class VioEstimator {
   const std::optional<CalibrationState>& calibration() const { return window_.calibration; }
   /// Body → camera with the window's correction (the calibration's without one).
   geometry::SE3 cameraExtrinsics() const { return estimator::cameraExtrinsics(window_); }
+  /// The estimated camera-IMU time offset (IMU time minus camera time) [s]; 0 when not estimated.
+  double timeOffset() const { return window_.calibration ? window_.calibration->time_offset_s : 0.0; }
   /// The IMU's time of a camera timestamp: shifted by the estimated time offset.
-  std::int64_t imuTime(std::int64_t camera_t_ns) const;
+  std::int64_t imuTime(std::int64_t camera_t_ns) const { return camera_t_ns + toNanoseconds(timeOffset()); }
 
   /// Preintegrates the IMU from the newest state to t_ns (camera times; the
   /// IMU's times follow imuTime) at its biases;
