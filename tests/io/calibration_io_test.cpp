@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "common/mini_dataset.h"
 #include "common/test_support.h"
 #include "edgevio/common/error.h"
@@ -67,6 +69,7 @@ TEST(CalibrationIo, KalibrTimeshiftIsTheImuClockOffsetAndRoundTrips) {
   const std::string camchain = dir.file("camchain-imucam.yaml"), imu = dir.file("imu.yaml");
   writeKalibrCalibration(camchain, imu, rig);
   EXPECT_EQ(loadKalibrCalibration(camchain, imu).imu_time_offset_s, -0.0125);
+  EXPECT_TRUE(loadKalibrCalibration(camchain, imu).warnings.empty());  // both cameras' shifts alike
   // Out of range: an error naming the file and line.
   std::string text = test::readFile(camchain);
   text.replace(text.find("timeshift_cam_imu: -0.0125"), 26, "timeshift_cam_imu: 3.5");
@@ -77,6 +80,17 @@ TEST(CalibrationIo, KalibrTimeshiftIsTheImuClockOffsetAndRoundTrips) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("timeshift_cam_imu"), std::string::npos) << e.what();
   }
+  // The right camera 2 ms off the left: cam0's shift is used, with a warning
+  // naming the file, cam1's line and the difference.
+  text = test::readFile(camchain);
+  text.replace(text.rfind("timeshift_cam_imu: -0.0125"), 26, "timeshift_cam_imu: -0.0105");
+  dir.write("skew/camchain-imucam.yaml", text);
+  const camera::StereoRig skewed = loadKalibrCalibration(dir.file("skew/camchain-imucam.yaml"));
+  EXPECT_EQ(skewed.imu_time_offset_s, -0.0125);
+  ASSERT_EQ(skewed.warnings.size(), 1u);
+  const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(text.rfind("timeshift")), '\n'));
+  EXPECT_NE(skewed.warnings[0].find("camchain-imucam.yaml:" + std::to_string(line) + ": cam1"), std::string::npos) << skewed.warnings[0];
+  EXPECT_NE(skewed.warnings[0].find("by 2.0 ms"), std::string::npos) << skewed.warnings[0];
 }
 
 TEST(CalibrationIo, EquidistantModelIsRead) {

@@ -3,6 +3,7 @@
 // IMU; C0, C1 = left and right camera. T_b_c maps camera points into the body
 // frame (EuRoC sensor.yaml calls it T_BS; Kalibr gives its inverse T_cam_imu).
 #include <string>
+#include <vector>
 
 #include "edgevio/camera/camera_model.h"
 #include "edgevio/geometry/se3.h"
@@ -20,6 +21,8 @@ struct StereoRig {
   double imu_time_offset_s = 0.0;
   /// The ROS topics the calibration was made from (Kalibr's rostopic), or empty.
   std::string topic[2], imu_topic;
+  /// What reading the calibration noticed that the run should report.
+  std::vector<std::string> warnings;
 
   /// Pose of the right camera in the left camera's frame.
   geometry::SE3 T_c0_c1() const { return T_b_c[0].inverse() * T_b_c[1]; }

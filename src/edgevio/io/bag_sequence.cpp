@@ -117,6 +117,7 @@ BagSequence::BagSequence(const SequenceSource& source, const DatasetOptions& opt
     : path_(source.path), reader_(std::make_unique<RosbagReader>(source.path)) {
   warnings_ = reader_->warnings();
   rig_ = bagCalibration(source.path, source.calib);
+  warnings_.insert(warnings_.end(), rig_.warnings.begin(), rig_.warnings.end());
   chooseTopics(source.topics);
   readMessages(options);
   std::vector<std::int64_t> tl, tr;
