@@ -28,7 +28,7 @@ struct SceneOptions {
   EDGEVIO_OPTIONS(SceneOptions)
 };
 
-// SceneOptions's keys, defaults, units, meanings and valid values: its table in scene.cpp.
+// SceneOptions's keys, defaults, units, meanings and valid values: its table in sim_options.cpp.
 
 /// A material: which texture, its brightness and where the tile starts on the face.
 struct SurfaceMaterial {

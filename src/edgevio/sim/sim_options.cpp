@@ -1,7 +1,23 @@
-// The options table of SimOptions (docs/configuration.md is generated from it).
+// The options tables of SimOptions and its SceneOptions (docs/configuration.md is generated from them).
 #include "edgevio/sim/sim_options.h"
 
 namespace edgevio::sim {
+
+EDGEVIO_OPTIONS_TABLE(SceneOptions,
+    number("room_margin_m", &S::room_margin_m, 2.5, "m", "free space between the path's bounding box and the walls", above(0)),
+    number("floor_below_path_m", &S::floor_below_path_m, 1.0, "m", "floor distance below the lowest point of the path", above(0)),
+    number("ceiling_above_path_m", &S::ceiling_above_path_m, 1.2, "m", "ceiling distance above the highest point of the path",
+           above(0)),
+    number("min_room_size_m", &S::min_room_size_m, 7.0, "m", "smallest horizontal room dimension", above(0)),
+    number("max_room_size_m", &S::max_room_size_m, 80.0, "m", "a path needing a larger room is rejected (texture detail would be lost)",
+           above(0)),
+    number("obstacle_count", &S::obstacle_count, 10, "-", "obstacles (boxes, panels, pillars) to place; fewer if they do not fit",
+           closed(0, 200)),
+    number("obstacle_clearance_m", &S::obstacle_clearance_m, 1.0, "m", "minimum distance between an obstacle and the path",
+           atLeast(0)),
+    number("texture_log2_size", &S::texture_log2_size, 10, "-", "textures have 2^n x 2^n texels", closed(6, 12)),
+    number("texture_tile_m", &S::texture_tile_m, 4.0, "m", "a texture tile covers this many metres", above(0)),
+    number("texture_dir", &S::texture_dir, "", "-", "optional folder of PNG/JPG images used as wall textures"))
 
 EDGEVIO_OPTIONS_TABLE(SimOptions,
     number("knot_dt_s", &S::knot_dt_s, 0.01, "s",
