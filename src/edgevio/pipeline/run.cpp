@@ -52,6 +52,23 @@ RunSummary startSummary(const RunRequest& req, const io::Sequence& sequence) {
   return s;
 }
 
+/// Writes a frame's row (and its alignment picture when kept), counts it
+/// into the summary and tells the observer of it and of its events.
+void deliver(const FrameRecord& r, bool keep_picture, std::int64_t t0, RunWriter& writer, RunSummary& s,
+             const RunObserver& observer) {
+  writer.write(r);
+  std::vector<std::uint8_t> jpeg;
+  if (keep_picture) {
+    jpeg = tracking::encodeJpeg(tracking::drawAlignmentPicture(*r.picture), kPictureJpegQuality);
+    writer.writePicture(r.t_ns, jpeg);
+  }
+  const std::size_t events_before = s.events.size();
+  s.count(r, t0);
+  if (observer.event)
+    for (std::size_t e = events_before; e < s.events.size(); ++e) observer.event(s.events[e]);
+  if (observer.frame) observer.frame(r, jpeg);
+}
+
 }  // namespace
 
 RunSummary run(const RunRequest& req, const Config& config, const RunObserver& observer) {
@@ -94,19 +111,8 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
     r.total_ms = item.load_ms + std::chrono::duration<double, std::milli>(posed - t_start).count();
     r.latency_ms = std::chrono::duration<double, std::milli>(posed - item.released).count();
     if (imu_rate && r.state)
-      imu_rate->publish(r.t_ns, *r.state,
-                        r.calibration ? toNanoseconds(r.calibration->time_offset_s) : 0);
-    writer.write(r);
-    std::vector<std::uint8_t> jpeg;
-    if (keepsPicture(r, done - 1, req.picture_stride)) {
-      jpeg = tracking::encodeJpeg(tracking::drawAlignmentPicture(*r.picture), kPictureJpegQuality);
-      writer.writePicture(r.t_ns, jpeg);
-    }
-    const std::size_t events_before = s.events.size();
-    s.count(r, t0);
-    if (observer.event)
-      for (std::size_t e = events_before; e < s.events.size(); ++e) observer.event(s.events[e]);
-    if (observer.frame) observer.frame(r, jpeg);
+      imu_rate->publish(r.t_ns, *r.state, r.calibration ? toNanoseconds(r.calibration->time_offset_s) : 0);
+    deliver(r, keepsPicture(r, done - 1, req.picture_stride), t0, writer, s, observer);
     if (observer.progress) observer.progress(done + item.dropped_before, frames.size(), toSeconds(r.t_ns - t0));
   });
   if (writer.poses() == 0) throw InputError(req.dataset, 0, "no stereo pair could be read");
