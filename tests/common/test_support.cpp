@@ -1,10 +1,14 @@
 #include "common/test_support.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
+#include <stdexcept>
 
 #ifdef EDGEVIO_TSAN
 #include <opencv2/core/utility.hpp>
@@ -41,6 +45,30 @@ std::string sharedDataPath(const std::string& subpath) {
 }
 
 std::string sourceDir() { return EDGEVIO_SOURCE_DIR; }
+
+std::string sharedRender(const std::string& key, const std::function<void(const std::string& out_dir)>& render) {
+  // The stamp of this program's file: size and modification time.
+  const fs::path exe = fs::read_symlink("/proc/self/exe");
+  const auto mtime = fs::last_write_time(exe).time_since_epoch().count();
+  const std::string stamp = exe.filename().string() + "-" + std::to_string(fs::file_size(exe)) + "-" + std::to_string(mtime);
+  const fs::path cache = fs::path(EDGEVIO_TEST_RENDER_CACHE), dir = cache / stamp, done = dir / (key + ".done");
+  fs::create_directories(dir);
+  // One process renders while the others wait on the lock; a render a
+  // crashed process left half-written has no .done and is made again.
+  const int lock = ::open((dir / (key + ".lock")).c_str(), O_CREAT | O_RDWR, 0644);
+  if (lock < 0 || ::flock(lock, LOCK_EX) != 0) throw std::runtime_error("cannot lock " + (dir / key).string());
+  if (!fs::exists(done)) {
+    // Renders of earlier builds of this program are never read again.
+    for (const auto& old : fs::directory_iterator(cache))
+      if (old.path().filename().string().rfind(exe.filename().string() + "-", 0) == 0 && old.path() != dir)
+        fs::remove_all(old.path());
+    fs::remove_all(dir / key);
+    render((dir / key).string());
+    std::ofstream(done) << "rendered\n";
+  }
+  ::close(lock);
+  return (dir / key).string();
+}
 
 TempDir::TempDir() {
   static std::atomic<int> counter{0};

@@ -38,6 +38,15 @@ class TempDir {
   std::string path_;
 };
 
+/// The folder `render(out_dir)` writes, made once per build of the test
+/// program and shared by its processes (ctest runs every test in a process
+/// of its own, and a render takes several times the test's own work). The
+/// simulator is deterministic, so another process's copy is this one's. It
+/// lives in the build tree (render_cache/), under a stamp of the program's
+/// file: a rebuild renders again. `key` names the render; a test must not
+/// change the folder.
+std::string sharedRender(const std::string& key, const std::function<void(const std::string& out_dir)>& render);
+
 /// The whole file as bytes ("" if it cannot be read).
 std::string readFile(const std::string& path);
 

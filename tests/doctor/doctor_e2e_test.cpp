@@ -36,18 +36,16 @@ constexpr double kClockOffsetMs = 15.0;
 /// alignments went into wrong basins that passed their self check, each the
 /// next one's start, and the doctor found 9.9 ms and 2.1 deg.
 struct Render {
-  TempDir dir;
-  std::string dataset = dir.file("data");
-  Render() {
+  std::string dataset = test::sharedRender("doctor-aggressive-offset-drops", [](const std::string& out) {
     sim::SimOptions o = test::fastSimOptions();
     o.imu_time_offset_ms = kClockOffsetMs;
-    sim::SimRequest r = test::scenarioRequest(dataset, "aggressive", 1.0, 10.0, 4);
+    sim::SimRequest r = test::scenarioRequest(out, "aggressive", 1.0, 10.0, 4);
     r.faults.push_back(sim::parseFault("drop_left:at=2,every=1"));
     // 12 frames overexposed (6 %: a finding), 4 black (2 %: counted, no finding).
     r.faults.push_back(sim::parseFault("saturated:at=4.02,for=0.6,size=6"));
     r.faults.push_back(sim::parseFault("black:at=6.52,for=0.2"));
     sim::simulate(r, o);
-  }
+  });
 };
 const Render& render() {
   static const Render r;

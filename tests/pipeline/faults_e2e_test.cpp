@@ -34,8 +34,7 @@ std::vector<sim::Fault> allFaults() {
 }
 
 struct FaultyRender {
-  TempDir dir;
-  std::string dataset = test::renderFigure8(dir.file("data"), allFaults());
+  std::string dataset = test::sharedRender("figure8-every-fault", [](const std::string& out) { test::renderFigure8(out, allFaults()); });
 };
 
 const FaultyRender& faultyRender() {

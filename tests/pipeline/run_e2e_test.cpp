@@ -101,8 +101,7 @@ TEST(Run, RealStaticFolderEdgeImuFindsGravityAndGyroBias) {
 }
 
 struct Simulated {
-  TempDir dir;
-  std::string dataset = test::renderFigure8(dir.file("data"));
+  std::string dataset = test::sharedRender("figure8", [](const std::string& out) { test::renderFigure8(out); });
 };
 
 const Simulated& simulated() {
