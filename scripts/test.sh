@@ -5,8 +5,10 @@
 #  3. address+undefined sanitizer build, then the unit tests again;
 #  4. thread sanitizer build, then the tests of every edgevio thread (the
 #     pipeline's three offline and in real time, shutdown on errors, the
-#     live server, the simulator's and renderer's workers).
-# Set EDGEVIO_SKIP_SANITIZE=1 to skip steps 3 and 4 during development.
+#     live server, the simulator's and renderer's workers);
+#  5. libFuzzer on every reader of user files, briefly (scripts/fuzz.sh:
+#     clang build of the readers; a crash or sanitizer report fails).
+# Set EDGEVIO_SKIP_SANITIZE=1 to skip steps 3 to 5 during development.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -41,5 +43,8 @@ if [ "${EDGEVIO_SKIP_SANITIZE:-0}" != "1" ]; then
   stage "Threads under the thread sanitizer"
   (cd build/tsan && TSAN_OPTIONS="halt_on_error=1 suppressions=$PWD/../../tests/tsan_suppressions.txt" \
      ctest --output-on-failure -j"$jobs" -L thread)
+
+  stage "Fuzzing every reader (libFuzzer, 5 s a target)"
+  bash scripts/fuzz.sh 5
 fi
 stage "Done"
