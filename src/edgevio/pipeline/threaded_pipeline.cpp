@@ -49,6 +49,45 @@ Loaded load(io::Sequence& sequence, std::size_t i, const camera::StereoRectifier
   return item;
 }
 
+/// The driver thread's work: loads the frames in order until they end or
+/// the queue is closed (the consumer stopped). Real time: each frame is
+/// released at its timestamp and dropped when the queue is full; offline,
+/// released when the driver gets to it, and waits for room.
+void readFrames(io::Sequence& sequence, const std::vector<std::size_t>& frames, const camera::StereoRectifier& rect,
+                bool realtime, BoundedQueue<Loaded>& loaded, std::atomic<std::size_t>& dropped) {
+  const auto start = Clock::now();
+  for (const std::size_t i : frames) {
+    Clock::time_point released = Clock::now();
+    if (realtime) {
+      released = start + std::chrono::nanoseconds(sequence.frameTime(i) - sequence.frameTime(frames.front()));
+      if (loaded.closedBy(released)) return;
+    }
+    Loaded item = load(sequence, i, rect, released);
+    if (!realtime) {
+      if (!loaded.push(std::move(item))) return;
+    } else if (!loaded.tryPush(std::move(item))) {
+      ++dropped;
+    }
+  }
+}
+
+/// The pyramid thread's work: each loaded frame's edge pyramid, until the
+/// loaded frames end or the prepared queue is closed.
+void prepareFrames(BoundedQueue<Loaded>& loaded, BoundedQueue<PipelineFrame>& prepared, const camera::StereoRectifier& rect,
+                   const vision::VisionOptions& vision, const std::atomic<std::size_t>& dropped) {
+  while (std::optional<Loaded> item = loaded.pop()) {
+    const auto t0 = Clock::now();
+    PipelineFrame p;
+    p.t_ns = item->t_ns;
+    p.released = item->released;
+    p.readable = item->readable;
+    if (item->readable) p.frame = tracking::prepareFrame(item->frame, rect, vision);
+    p.load_ms = item->ms + msSince(t0);
+    p.dropped_before = dropped;
+    if (!prepared.push(std::move(p))) return;
+  }
+}
+
 }  // namespace
 
 void nameThread(const char* name) { pthread_setname_np(pthread_self(), name); }
@@ -63,22 +102,7 @@ PipelineResult runThreaded(io::Sequence& sequence, const std::vector<std::size_t
   std::thread driver([&] {
     nameThread("ev-read");
     try {
-      const auto start = Clock::now();
-      for (const std::size_t i : frames) {
-        // Real time: the frame arrives at its timestamp; offline, when the driver gets to it.
-        // Either way, a closed queue (the consumer stopped) ends the reading.
-        Clock::time_point released = Clock::now();
-        if (realtime) {
-          released = start + std::chrono::nanoseconds(sequence.frameTime(i) - sequence.frameTime(frames.front()));
-          if (loaded.closedBy(released)) break;
-        }
-        Loaded item = load(sequence, i, rect, released);
-        if (!realtime) {
-          if (!loaded.push(std::move(item))) break;
-        } else if (!loaded.tryPush(std::move(item))) {
-          ++dropped;
-        }
-      }
+      readFrames(sequence, frames, rect, realtime, loaded, dropped);
     } catch (...) {
       driver_error = std::current_exception();
     }
@@ -87,17 +111,7 @@ PipelineResult runThreaded(io::Sequence& sequence, const std::vector<std::size_t
   std::thread preparer([&] {
     nameThread("ev-pyramid");
     try {
-      while (std::optional<Loaded> item = loaded.pop()) {
-        const auto t0 = Clock::now();
-        PipelineFrame p;
-        p.t_ns = item->t_ns;
-        p.released = item->released;
-        p.readable = item->readable;
-        if (item->readable) p.frame = tracking::prepareFrame(item->frame, rect, vision);
-        p.load_ms = item->ms + msSince(t0);
-        p.dropped_before = dropped;
-        if (!prepared.push(std::move(p))) break;
-      }
+      prepareFrames(loaded, prepared, rect, vision, dropped);
     } catch (...) {
       prepare_error = std::current_exception();
       loaded.close();
