@@ -5,6 +5,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "edgevio/common/format.h"
 #include "edgevio/common/json.h"
 #include "edgevio/doctor/doctor.h"
 #include "edgevio/eval/svg_plot.h"
@@ -15,11 +16,6 @@ namespace {
 
 constexpr double kStandardGravity = 9.81;
 
-std::string format(const char* fmt, double a, double b = 0, double c = 0, double d = 0) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, a, b, c, d);
-  return buf;
-}
 
 
 }  // namespace
@@ -35,7 +31,7 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
   const MotionCheck& m = r.motion;
   if (!m.observable) {
     add(Severity::kWarning, "camera-IMU time offset and rotation not measured",
-        format("%.0f frame pairs aligned; the camera's rotation rate varied by %.3f and %.3f rad/s about its two main axes "
+        formatText("%.0f frame pairs aligned; the camera's rotation rate varied by %.3f and %.3f rad/s about its two main axes "
                "(doctor.min_rotation_rate_rad_s = %.2f)",
                static_cast<double>(m.rotations), m.rotation_rate_std_rad_s[0], m.rotation_rate_std_rad_s[1],
                o.min_rotation_rate_rad_s),
@@ -44,24 +40,24 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
     const double offset = std::abs(m.time_offset_ms);
     if (offset > o.time_offset_warning_ms)
       add(offset > 3 * o.time_offset_warning_ms ? Severity::kError : Severity::kWarning,
-          format("camera and IMU clocks disagree by %.1f ms", m.time_offset_ms),
-          format("the gyroscope's rate matches the camera's best with the IMU's stamps %.1f +- %.1f ms late (mean squared "
+          formatText("camera and IMU clocks disagree by %.1f ms", m.time_offset_ms),
+          formatText("the gyroscope's rate matches the camera's best with the IMU's stamps %.1f +- %.1f ms late (mean squared "
                  "rate residual %.3g (rad/s)^2 there, %.3g at 0 ms)",
                  m.time_offset_ms, m.time_offset_sigma_ms,
                  *std::min_element(m.offset_cost.begin(), m.offset_cost.end()),
                  m.offset_cost.empty() ? 0.0 : m.offset_cost[m.offset_cost.size() / 2]),
-          format("set dataset.imu_time_offset_ms to %.1f more than it is now (or Kalibr's timeshift_cam_imu to %.4f s "
+          formatText("set dataset.imu_time_offset_ms to %.1f more than it is now (or Kalibr's timeshift_cam_imu to %.4f s "
                  "more), or fix the driver's time stamping; if it drifts, let the window follow it "
                  "(estimator.estimate_time_offset: true)",
                  m.time_offset_ms, m.time_offset_ms * 1e-3));
     if (m.rotation_error_deg > o.rotation_warning_deg) {
       const Quat q = m.R_b_c.quaternion();
       add(m.rotation_error_deg > 4 * o.rotation_warning_deg ? Severity::kError : Severity::kWarning,
-          format("the calibration's camera-IMU rotation is %.2f deg off", m.rotation_error_deg),
-          format("the camera's rotations between frames match the gyroscope's through a rotation %.2f deg from the "
+          formatText("the calibration's camera-IMU rotation is %.2f deg off", m.rotation_error_deg),
+          formatText("the camera's rotations between frames match the gyroscope's through a rotation %.2f deg from the "
                  "calibration's (rate residual %.3f rad/s RMS over %.0f frame pairs)",
                  m.rotation_error_deg, m.residual_rad_s, static_cast<double>(m.rotations)),
-          format("recalibrate camera and IMU (Kalibr's kalibr_calibrate_imu_camera), or let the window correct it "
+          formatText("recalibrate camera and IMU (Kalibr's kalibr_calibrate_imu_camera), or let the window correct it "
                  "(estimator.estimate_cam_imu_rotation: true); the measured rotation of the rectified "
                  "left camera in the body, as a quaternion w x y z: %.5f %.5f %.5f %.5f",
                  q.w(), q.x(), q.y(), q.z()));
@@ -71,21 +67,21 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
   // The IMU.
   const ImuCheck& imu = r.imu;
   if (imu.rate_hz < o.min_imu_rate_hz)
-    add(Severity::kWarning, format("the IMU runs at %.0f Hz", imu.rate_hz),
-        format("median spacing of %.0f readings (doctor.min_imu_rate_hz = %.0f)", static_cast<double>(imu.samples),
+    add(Severity::kWarning, formatText("the IMU runs at %.0f Hz", imu.rate_hz),
+        formatText("median spacing of %.0f readings (doctor.min_imu_rate_hz = %.0f)", static_cast<double>(imu.samples),
                o.min_imu_rate_hz),
         "configure the IMU for 200 Hz or more: fast rotation between readings is integrated less accurately");
   if (imu.gaps > 0)
-    add(Severity::kWarning, format("%.0f gaps in the IMU log", imu.gaps),
-        format("spacings over estimator.max_imu_gap_s = %.3f s, the longest %.3f s", max_gap_s, imu.longest_gap_s),
+    add(Severity::kWarning, formatText("%d gaps in the IMU log", imu.gaps),
+        formatText("spacings over estimator.max_imu_gap_s = %.3f s, the longest %.3f s", max_gap_s, imu.longest_gap_s),
         "check the IMU driver and its bus (USB bandwidth, queue sizes); the IMU modes restart their window after each gap");
   if (imu.saturated_samples > 0)
-    add(Severity::kWarning, format("%.0f IMU readings clipped", imu.saturated_samples),
+    add(Severity::kWarning, formatText("%d IMU readings clipped", imu.saturated_samples),
         "readings that sit at their channel's extreme value several times: the sensor's range was exceeded",
         "raise the gyroscope's or accelerometer's range in the driver");
   if (imu.standstill_s <= 0) {
     add(Severity::kInfo, "no standstill in the IMU log",
-        format("no %.1f s without motion (gyroscope std. dev. under %.3f rad/s, accelerometer under %.2f m/s^2)",
+        formatText("no %.1f s without motion (gyroscope std. dev. under %.3f rad/s, accelerometer under %.2f m/s^2)",
                o.standstill_min_s, o.standstill_gyro_std_rad_s, o.standstill_accel_std_mps2),
         "start recordings with two seconds at rest: the IMU's bias and noise are then measured, and runs start from a static "
         "initialisation");
@@ -94,9 +90,9 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
       const double ratio = measured / file;
       if (ratio > o.noise_ratio_warning || ratio < 1.0 / o.noise_ratio_warning)
         add(Severity::kWarning, std::string("the ") + sensor + "'s noise differs from the sensor file's",
-            format("measured %.3g ", measured) + unit + format(" at standstill (%.1f s from %.1f s), the file says %.3g (x%.2f)",
+            formatText("measured %.3g ", measured) + unit + formatText(" at standstill (%.1f s from %.1f s), the file says %.3g (x%.2f)",
                                                                 imu.standstill_s, imu.standstill_start_s, file, ratio),
-            std::string("set ") + key + format(" to %.3g in imu0/sensor.yaml or Kalibr's imu.yaml (motors running at rest "
+            std::string("set ") + key + formatText(" to %.3g in imu0/sensor.yaml or Kalibr's imu.yaml (motors running at rest "
                                                "add vibration: measure with them off)",
                                                measured));
     };
@@ -104,11 +100,11 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
     noiseFinding("accelerometer", imu.accel_noise_density, rig.imu.accel_noise_density, "accelerometer_noise_density",
                  "m/s^2/sqrt(Hz)");
     if (std::abs(imu.gravity_mps2 - kStandardGravity) > o.gravity_tolerance_mps2)
-      add(Severity::kError, format("the accelerometer reads %.2f m/s^2 at rest", imu.gravity_mps2),
-          format("mean magnitude over %.1f s of standstill; gravity is %.2f", imu.standstill_s, kStandardGravity),
+      add(Severity::kError, formatText("the accelerometer reads %.2f m/s^2 at rest", imu.gravity_mps2),
+          formatText("mean magnitude over %.1f s of standstill; gravity is %.2f", imu.standstill_s, kStandardGravity),
           "check the accelerometer's unit (g or m/s^2) and scale in the driver");
-    add(Severity::kInfo, format("gyroscope bias %.4f rad/s at rest", imu.gyro_bias.norm()),
-        format("mean reading over %.1f s of standstill: %.4f %.4f %.4f rad/s", imu.standstill_s, imu.gyro_bias.x(),
+    add(Severity::kInfo, formatText("gyroscope bias %.4f rad/s at rest", imu.gyro_bias.norm()),
+        formatText("mean reading over %.1f s of standstill: %.4f %.4f %.4f rad/s", imu.standstill_s, imu.gyro_bias.x(),
                imu.gyro_bias.y(), imu.gyro_bias.z()),
         "nothing: the estimator starts from this bias after a static start");
   }
@@ -117,19 +113,19 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
   const StereoCheck& st = r.stereo;
   if (st.matches < 20) {
     add(Severity::kWarning, "stereo rectification not checked",
-        format("%.0f corners matched between the rectified images of %.0f frames", static_cast<double>(st.matches),
+        formatText("%.0f corners matched between the rectified images of %.0f frames", static_cast<double>(st.matches),
                static_cast<double>(st.frames)),
         "check that the right images show the same scene, and the calibration's baseline and rotation");
   } else if (st.abs_vertical_disparity_px > o.vertical_disparity_warning_px) {
     add(st.abs_vertical_disparity_px > 3 * o.vertical_disparity_warning_px ? Severity::kError : Severity::kWarning,
-        format("rectified stereo rows disagree by %.2f px", st.vertical_disparity_px),
-        format("median vertical disparity %.2f px (median magnitude %.2f) over %.0f matched corners of %.0f frames",
+        formatText("rectified stereo rows disagree by %.2f px", st.vertical_disparity_px),
+        formatText("median vertical disparity %.2f px (median magnitude %.2f) over %.0f matched corners of %.0f frames",
                st.vertical_disparity_px, st.abs_vertical_disparity_px, static_cast<double>(st.matches),
                static_cast<double>(st.frames)),
         "recalibrate the stereo pair: the right camera's rotation or either camera's intrinsics are off");
   }
   if (st.valid_depth_fraction < o.valid_depth_warning)
-    add(Severity::kWarning, format("only %.0f %% of edge pixels have a stereo depth", 100 * st.valid_depth_fraction),
+    add(Severity::kWarning, formatText("only %.0f %% of edge pixels have a stereo depth", 100 * st.valid_depth_fraction),
         "level-0 edge pixels with a block-matching disparity, over every frame read",
         "check the stereo calibration (above) and vision.stereo_num_disparities (near objects need a larger range)");
 
@@ -138,28 +134,28 @@ std::vector<Finding> findFindings(const DoctorReport& r, const camera::StereoRig
   const double frames = std::max<double>(1, static_cast<double>(im.frames));
   if (im.missing_frames > 0)
     add(im.missing_frames > o.clipped_frames_warning * frames ? Severity::kWarning : Severity::kInfo,
-        format("%.0f frames missing", im.missing_frames),
-        format("frame spacings over 1.5 x the median (%.1f Hz)", im.rate_hz),
+        formatText("%d frames missing", im.missing_frames),
+        formatText("frame spacings over 1.5 x the median (%.1f Hz)", im.rate_hz),
         "check the camera driver and the recorder's bandwidth (compressed images, a faster disk)");
   const auto frameFinding = [&](int count, const char* what, const std::string& evidence, const char* fix) {
     if (count > o.clipped_frames_warning * frames)
-      add(Severity::kWarning, format("%.0f %% of the frames ", 100.0 * count / frames) + what, evidence, fix);
+      add(Severity::kWarning, formatText("%.0f %% of the frames ", 100.0 * count / frames) + what, evidence, fix);
   };
   frameFinding(im.blurred_frames, "are blurred",
-               format("edge sharpness under %.2f x the median (%.1f grey/px)", o.blur_ratio,
+               formatText("edge sharpness under %.2f x the median (%.1f grey/px)", o.blur_ratio,
                       im.sharpness.empty() ? 0.0 : im.sharpness[im.sharpness.size() / 2]),
                "shorten the exposure time (cap auto-exposure), add light");
   frameFinding(im.overexposed_frames, "are overexposed",
-               format("over %.0f %% of their pixels at 255", 100 * o.clipped_pixels),
+               formatText("over %.0f %% of their pixels at 255", 100 * o.clipped_pixels),
                "lower the exposure or gain (auto-exposure target)");
   frameFinding(im.underexposed_frames, "are underexposed",
-               format("over %.0f %% of their pixels at 5 or less", 100 * o.clipped_pixels),
+               formatText("over %.0f %% of their pixels at 5 or less", 100 * o.clipped_pixels),
                "raise the exposure or gain, add light");
   frameFinding(im.exposure_changes, "change brightness suddenly",
-               format("mean grey level over %.0f %% from the previous frame", 100 * o.exposure_jump),
+               formatText("mean grey level over %.0f %% from the previous frame", 100 * o.exposure_jump),
                "slow down auto-exposure, or fix the exposure");
   if (m.failed_alignments > o.clipped_frames_warning * frames)
-    add(Severity::kWarning, format("%.0f frames could not be aligned to their predecessor", static_cast<double>(m.failed_alignments)),
+    add(Severity::kWarning, formatText("%.0f frames could not be aligned to their predecessor", static_cast<double>(m.failed_alignments)),
         "the front end's self check refused the alignment without an IMU prediction",
         "see the image findings; fast motion needs a higher frame rate or shorter exposure");
 
@@ -176,24 +172,24 @@ std::string verdict(const DoctorReport& r) {
     warnings += f.severity == Severity::kWarning;
   }
   if (errors + warnings == 0) return "nothing wrong found";
-  return format("%.0f error(s), %.0f warning(s)", errors, warnings);
+  return formatText("%d error(s), %d warning(s)", errors, warnings);
 }
 
 }  // namespace
 
 void writeText(std::ostream& out, const DoctorReport& r) {
   out << "edgevio doctor: " << r.dataset << "\n";
-  out << format("  images   %.0f frames read (%.1f s) at %.1f Hz, %.0f missing\n", static_cast<double>(r.images.frames),
-                r.duration_s, r.images.rate_hz, r.images.missing_frames);
-  out << format("  imu      %.0f readings at %.1f Hz, %.0f gaps, standstill %.1f s\n", static_cast<double>(r.imu.samples),
-                r.imu.rate_hz, r.imu.gaps, r.imu.standstill_s);
+  out << formatText("  images   %.0f frames read (%.1f s) at %.1f Hz, %d missing\n", static_cast<double>(r.images.frames),
+                    r.duration_s, r.images.rate_hz, r.images.missing_frames);
+  out << formatText("  imu      %.0f readings at %.1f Hz, %d gaps, standstill %.1f s\n", static_cast<double>(r.imu.samples),
+                    r.imu.rate_hz, r.imu.gaps, r.imu.standstill_s);
   if (r.motion.observable)
-    out << format("  motion   time offset %.2f +- %.2f ms (IMU minus camera), camera-IMU rotation %.2f deg from the "
+    out << formatText("  motion   time offset %.2f +- %.2f ms (IMU minus camera), camera-IMU rotation %.2f deg from the "
                   "calibration's\n",
                   r.motion.time_offset_ms, r.motion.time_offset_sigma_ms, r.motion.rotation_error_deg);
   else
     out << "  motion   too little rotation to measure the time offset and rotation\n";
-  out << format("  stereo   vertical disparity %.2f px (median of %.0f matches), %.0f %% of edge pixels with depth\n",
+  out << formatText("  stereo   vertical disparity %.2f px (median of %.0f matches), %.0f %% of edge pixels with depth\n",
                 r.stereo.vertical_disparity_px, static_cast<double>(r.stereo.matches), 100 * r.stereo.valid_depth_fraction);
   for (const Finding& f : r.findings) {
     out << "\n" << options::nameOf(kSeverityChoices, f.severity) << ": " << f.what << "\n";

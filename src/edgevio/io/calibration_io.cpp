@@ -1,12 +1,12 @@
 #include "edgevio/io/calibration_io.h"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/yaml_file.h"
 
 namespace edgevio::io {
@@ -109,12 +109,11 @@ StereoRig loadKalibrCalibration(const std::string& camchain_yaml, const std::str
   // about 1 % of an 11 cm baseline's depth at 1 m/s.
   constexpr double kStereoSkewWarningS = 1e-3;
   if (std::abs(timeshift[1] - timeshift[0]) > kStereoSkewWarningS) {
-    char ms[32];
-    std::snprintf(ms, sizeof ms, "%.1f", 1e3 * (timeshift[1] - timeshift[0]));
-    rig.warnings.push_back(camchain_yaml + ":" + std::to_string(yamlLine(root["cam1"]["timeshift_cam_imu"])) +
-                           ": cam1's timeshift_cam_imu differs from cam0's by " + ms +
-                           " ms; edgevio takes both images at cam0's, so stereo depth is off while the rig moves: "
-                           "synchronise the cameras' triggers (or recalibrate, if they are)");
+    rig.warnings.push_back(formatText("%s:%zu: cam1's timeshift_cam_imu differs from cam0's by %.1f ms; edgevio takes both "
+                                      "images at cam0's, so stereo depth is off while the rig moves: synchronise the "
+                                      "cameras' triggers (or recalibrate, if they are)",
+                                      camchain_yaml.c_str(), yamlLine(root["cam1"]["timeshift_cam_imu"]),
+                                      1e3 * (timeshift[1] - timeshift[0])));
   }
   if (!imu_yaml.empty()) {
     const YAML::Node imu_root = loadYamlFile(imu_yaml);

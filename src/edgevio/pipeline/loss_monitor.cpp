@@ -1,8 +1,9 @@
 #include "edgevio/pipeline/loss_monitor.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
+
+#include "edgevio/common/format.h"
 
 namespace edgevio::pipeline {
 
@@ -48,27 +49,21 @@ void LossMonitor::update(FrameRecord* r) {
   } else if (lost_ == Cause::kNone && failed && failures_ >= lost_after_) {
     begin(Cause::kFailures, first_failure_ns_, std::to_string(failures_) + " consecutive self-check failures");
   } else if (lost_ == Cause::kNone && implausible) {
-    char why[160];
-    if (too_fast)
-      std::snprintf(why, sizeof why, "the pose's step implies a speed of %.0f m/s, over %.0f", r->implied_speed_mps, speed_mps_);
-    else
-      std::snprintf(why, sizeof why, "the pose's step implies an acceleration of %.0f m/s^2, over %.0f", r->implied_accel_mps2,
-                    accel_mps2_);
-    begin(Cause::kImplausibleMotion, r->t_ns, why);
+    begin(Cause::kImplausibleMotion, r->t_ns,
+          too_fast ? formatText("the pose's step implies a speed of %.0f m/s, over %.0f", r->implied_speed_mps, speed_mps_)
+                   : formatText("the pose's step implies an acceleration of %.0f m/s^2, over %.0f", r->implied_accel_mps2,
+                            accel_mps2_));
   } else if (lost_ == Cause::kNone && gyro_contradictions_ > 0 && r->aligned && !recent_.empty() && suspect(recent_.back()) &&
              suspects >= gyro_contradictions_) {
     const auto first = std::find_if(recent_.begin(), recent_.end(), suspect);
     const int contradictions =
         static_cast<int>(std::count_if(recent_.begin(), recent_.end(), [](const Recent& f) { return f.contradicted; }));
-    char why[200];
-    if (contradictions == suspects)
-      std::snprintf(why, sizeof why, "the gyroscope contradicts %d of the last %zu frames' rotation by over %.1f deg", contradictions,
-                    recent_.size(), gyro_disagreement_deg_);
-    else
-      std::snprintf(why, sizeof why,
-                    "%d of the last %zu frames failed the self check or their rotation is over %.1f deg from the gyroscope's",
-                    suspects, recent_.size(), gyro_disagreement_deg_);
-    begin(Cause::kEvidence, first->t_ns, why);
+    begin(Cause::kEvidence, first->t_ns,
+          contradictions == suspects
+              ? formatText("the gyroscope contradicts %d of the last %zu frames' rotation by over %.1f deg", contradictions,
+                       recent_.size(), gyro_disagreement_deg_)
+              : formatText("%d of the last %zu frames failed the self check or their rotation is over %.1f deg from the gyroscope's",
+                       suspects, recent_.size(), gyro_disagreement_deg_));
   }
   r->status = lost_ != Cause::kNone ? TrackingStatus::kLost : TrackingStatus::kOk;
 }
