@@ -98,5 +98,39 @@ TEST(EdgeTracker, TheGyroRotationSinceTheKeyframeIsTheAlignmentsRotationPrior) {
   EXPECT_LT(off_deg, 0.01);
 }
 
+TEST(EdgeTracker, TheRotationPriorReachesTheCameraThroughThePredictionsExtrinsics) {
+  // With estimator.estimate_cam_imu_rotation the window corrects the
+  // calibration's body-camera rotation; the gyroscope's rotation must reach
+  // the alignment through the corrected one. A tight prior from the true body
+  // rotation, seen through extrinsics 10 deg off the calibration's, must pull
+  // the alignment to the rotation those extrinsics give (over these 0.15 s
+  // the two priors differ by a fifth of a degree).
+  const auto& fx = fixture();
+  const auto& path = fx.path();
+  const std::size_t i = kSample, j = kSample + 30;
+  const vision::VisionOptions vo;
+  TrackingOptions to;
+  to.rotation_prior_deg = 1e-3;
+  to.rotation_prior_fraction = 0.0;
+  const EdgeTracker tracker(fx.rectifier(), vo, AlignmentOptions(), to);
+  const auto keyframe = tracker.makeKeyframe(prepareFrame(fx.frame(path[i].T_w_b, 0, i), fx.rectifier(), vo));
+  const geometry::SO3 R_gyro = path[i].T_w_b.so3().inverse() * path[j].T_w_b.so3();
+  const SE3 calibrated = fx.rectifier().T_b_rect(0);
+  const SE3 corrected = calibrated * SE3(geometry::SO3::exp(Vec3(0.0, 10.0 * kDegToRad, 0.0)), Vec3::Zero());
+  Prediction pred;
+  pred.T_w_b = path[j].T_w_b;
+  pred.reliable = PredictionReliability::kPose;
+  pred.gyro_since = [&](std::int64_t) -> std::optional<geometry::SO3> { return R_gyro; };
+  pred.T_b_c = corrected;
+  const Track t = tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), *keyframe, path[i].T_w_b, pred);
+  ASSERT_TRUE(t.passed());
+  const auto throughExtrinsics = [&](const SE3& T_b_c) { return T_b_c.so3().inverse() * R_gyro.inverse() * T_b_c.so3(); };
+  const double apart_deg = geometry::angle(throughExtrinsics(calibrated).inverse() * throughExtrinsics(corrected)) * kRadToDeg;
+  const double off_deg = geometry::angle(throughExtrinsics(corrected).inverse() * t.alignment.T_nr.so3()) * kRadToDeg;
+  std::printf("the two priors %.3f deg apart; the alignment %.4f deg from the corrected one's\n", apart_deg, off_deg);
+  ASSERT_GT(apart_deg, 0.1);  // ten times the tolerance below: the test tells the two apart
+  EXPECT_LT(off_deg, 0.01);
+}
+
 }  // namespace
 }  // namespace edgevio::tracking

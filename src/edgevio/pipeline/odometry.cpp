@@ -202,8 +202,11 @@ tracking::Prediction Odometry::constantVelocityPrediction(std::int64_t t_ns) con
   return p;
 }
 
-Odometry::Tracked Odometry::track(const tracking::PreparedFrame& frame, const tracking::Prediction& p, FrameRecord* r) {
+Odometry::Tracked Odometry::track(const tracking::PreparedFrame& frame, const tracking::Prediction& prediction,
+                                  FrameRecord* r) {
   r->aligned = true;
+  tracking::Prediction p = prediction;
+  if (windowed() && estimator_->calibration()) p.T_b_c = cameraExtrinsics();
   const auto alignToCurrent = [&] {
     const Keyframe& k = *keyframes_.current();
     r->reference_t_ns = k.data->t_ns;

@@ -36,7 +36,8 @@ AlignmentResult EdgeTracker::align(const vision::EdgePyramid& pyr, const Keyfram
   std::optional<RotationPrior> rotation_prior;
   if (prediction.gyro_since && tracking_.rotation_prior_deg > 0)
     if (const auto R_br_bn = prediction.gyro_since(keyframe.t_ns)) {
-      const SO3 R_nr = T_b_c_.so3().inverse() * R_br_bn->inverse() * T_b_c_.so3();
+      const SO3 R_b_c = prediction.T_b_c.value_or(T_b_c_).so3();
+      const SO3 R_nr = R_b_c.inverse() * R_br_bn->inverse() * R_b_c;
       const double s0 = tracking_.rotation_prior_deg * kDegToRad, s1 = tracking_.rotation_prior_fraction * geometry::angle(R_nr);
       rotation_prior = RotationPrior{R_nr, std::sqrt(s0 * s0 + s1 * s1)};
     }
@@ -90,11 +91,12 @@ KeyframeReason EdgeTracker::keyframeVote(const vision::EdgePyramid& pyr, const K
 Track EdgeTracker::track(const PreparedFrame& frame, const KeyframeData& keyframe, const SE3& T_w_b_keyframe,
                          const Prediction& prediction) const {
   Track t;
-  const SE3 T_w_c_keyframe = T_w_b_keyframe * T_b_c_;
-  const SE3 T_nr_init = (prediction.T_w_b * T_b_c_).inverse() * T_w_c_keyframe;
+  const SE3 T_b_c = prediction.T_b_c.value_or(T_b_c_);
+  const SE3 T_w_c_keyframe = T_w_b_keyframe * T_b_c;
+  const SE3 T_nr_init = (prediction.T_w_b * T_b_c).inverse() * T_w_c_keyframe;
   t.alignment = align(frame.pyramid, keyframe, T_nr_init, prediction, &t.check);
   if (!t.passed()) return t;
-  t.T_w_b = T_w_c_keyframe * t.alignment.T_nr.inverse() * T_b_c_.inverse();
+  t.T_w_b = T_w_c_keyframe * t.alignment.T_nr.inverse() * T_b_c.inverse();
   t.keyframe_vote = keyframeVote(frame.pyramid, keyframe, t.alignment);
   return t;
 }

@@ -109,6 +109,9 @@ struct Prediction {
   PredictionReliability reliable = PredictionReliability::kNone;
   /// IMU modes: the gyroscope alone since a keyframe, the alignment's rotation prior (empty: none).
   GyroSince gyro_since;
+  /// Body → rectified left camera when the window corrects the calibration's
+  /// (estimator.estimate_cam_imu_rotation, _translation); empty: the calibration's.
+  std::optional<geometry::SE3> T_b_c;
 };
 
 /// Which check of an alignment against its prediction re-aligned it.
