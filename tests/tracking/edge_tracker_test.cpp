@@ -67,11 +67,12 @@ TEST(EdgeTracker, AWrongPredictionDoesNotDragAGoodAlignment) {
   EXPECT_LT(rotation.error_m, 0.01);
 }
 
-TEST(EdgeTracker, TheGyroRotationSinceTheKeyframeIsTheAlignmentsRotationPrior) {
-  // A stiff prior (1e-3 deg) from a gyroscope that is 0.3 deg off about the
-  // body x axis: the tracked attitude must be the keyframe's times that body
-  // rotation, which checks the time it is asked for (the keyframe's) and its
-  // conversion from the body into the camera frame.
+/// The frame 30 samples (0.15 s) after kSample tracked against a keyframe
+/// at kSample from its true pose, under a stiff rotation prior (1e-3 deg)
+/// from a gyroscope that reports the body rotation R_gyro, with `T_b_c` as
+/// the prediction's extrinsics; `asked` collects the times the gyroscope
+/// was asked from.
+Track trackUnderGyroPrior(const geometry::SO3& R_gyro, const std::optional<SE3>& T_b_c, std::vector<std::int64_t>* asked) {
   const auto& fx = fixture();
   const auto& path = fx.path();
   const std::size_t i = kSample, j = kSample + 30;
@@ -81,48 +82,50 @@ TEST(EdgeTracker, TheGyroRotationSinceTheKeyframeIsTheAlignmentsRotationPrior) {
   to.rotation_prior_fraction = 0.0;
   const EdgeTracker tracker(fx.rectifier(), vo, AlignmentOptions(), to);
   const auto keyframe = tracker.makeKeyframe(prepareFrame(fx.frame(path[i].T_w_b, 0, i), fx.rectifier(), vo));
-  const geometry::SO3 R_gyro = path[i].T_w_b.so3().inverse() * path[j].T_w_b.so3() * geometry::SO3::exp(Vec3(0.3 * kDegToRad, 0.0, 0.0));
-  std::vector<std::int64_t> asked;
   Prediction pred;
   pred.T_w_b = path[j].T_w_b;
   pred.reliable = PredictionReliability::kPose;
   pred.gyro_since = [&](std::int64_t t_ref) -> std::optional<geometry::SO3> {
-    asked.push_back(t_ref);
+    asked->push_back(t_ref);
     return R_gyro;
   };
-  const Track t = tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), *keyframe, path[i].T_w_b, pred);
+  pred.T_b_c = T_b_c;
+  return tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), *keyframe, path[i].T_w_b, pred);
+}
+
+/// The true body rotation between the two frames of trackUnderGyroPrior.
+geometry::SO3 trueGyroRotation() {
+  const auto& path = fixture().path();
+  return path[kSample].T_w_b.so3().inverse() * path[kSample + 30].T_w_b.so3();
+}
+
+TEST(EdgeTracker, TheGyroRotationSinceTheKeyframeIsTheAlignmentsRotationPrior) {
+  // A gyroscope 0.3 deg off about the body x axis: the tracked attitude must
+  // be the keyframe's times that body rotation, which checks the time it is
+  // asked for (the keyframe's) and its conversion from the body into the
+  // camera frame.
+  const geometry::SO3 R_gyro = trueGyroRotation() * geometry::SO3::exp(Vec3(0.3 * kDegToRad, 0.0, 0.0));
+  std::vector<std::int64_t> asked;
+  const Track t = trackUnderGyroPrior(R_gyro, std::nullopt, &asked);
   ASSERT_TRUE(t.passed());
   ASSERT_FALSE(asked.empty());
   for (const std::int64_t t_ref : asked) EXPECT_EQ(t_ref, 0);
-  const double off_deg = geometry::angle((path[i].T_w_b.so3() * R_gyro).inverse() * t.T_w_b.so3()) * kRadToDeg;
+  const double off_deg = geometry::angle((fixture().path()[kSample].T_w_b.so3() * R_gyro).inverse() * t.T_w_b.so3()) * kRadToDeg;
   EXPECT_LT(off_deg, 0.01);
 }
 
 TEST(EdgeTracker, TheRotationPriorReachesTheCameraThroughThePredictionsExtrinsics) {
   // With estimator.estimate_cam_imu_rotation the window corrects the
   // calibration's body-camera rotation; the gyroscope's rotation must reach
-  // the alignment through the corrected one. A tight prior from the true body
-  // rotation, seen through extrinsics 10 deg off the calibration's, must pull
-  // the alignment to the rotation those extrinsics give (over these 0.15 s
-  // the two priors differ by a fifth of a degree).
-  const auto& fx = fixture();
-  const auto& path = fx.path();
-  const std::size_t i = kSample, j = kSample + 30;
-  const vision::VisionOptions vo;
-  TrackingOptions to;
-  to.rotation_prior_deg = 1e-3;
-  to.rotation_prior_fraction = 0.0;
-  const EdgeTracker tracker(fx.rectifier(), vo, AlignmentOptions(), to);
-  const auto keyframe = tracker.makeKeyframe(prepareFrame(fx.frame(path[i].T_w_b, 0, i), fx.rectifier(), vo));
-  const geometry::SO3 R_gyro = path[i].T_w_b.so3().inverse() * path[j].T_w_b.so3();
-  const SE3 calibrated = fx.rectifier().T_b_rect(0);
+  // the alignment through the corrected one. The true body rotation, seen
+  // through extrinsics 10 deg off the calibration's, must pull the alignment
+  // to the rotation those extrinsics give (over these 0.15 s the two priors
+  // differ by a fifth of a degree).
+  const geometry::SO3 R_gyro = trueGyroRotation();
+  const SE3 calibrated = fixture().rectifier().T_b_rect(0);
   const SE3 corrected = calibrated * SE3(geometry::SO3::exp(Vec3(0.0, 10.0 * kDegToRad, 0.0)), Vec3::Zero());
-  Prediction pred;
-  pred.T_w_b = path[j].T_w_b;
-  pred.reliable = PredictionReliability::kPose;
-  pred.gyro_since = [&](std::int64_t) -> std::optional<geometry::SO3> { return R_gyro; };
-  pred.T_b_c = corrected;
-  const Track t = tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), *keyframe, path[i].T_w_b, pred);
+  std::vector<std::int64_t> asked;
+  const Track t = trackUnderGyroPrior(R_gyro, corrected, &asked);
   ASSERT_TRUE(t.passed());
   const auto throughExtrinsics = [&](const SE3& T_b_c) { return T_b_c.so3().inverse() * R_gyro.inverse() * T_b_c.so3(); };
   const double apart_deg = geometry::angle(throughExtrinsics(calibrated).inverse() * throughExtrinsics(corrected)) * kRadToDeg;
