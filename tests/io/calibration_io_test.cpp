@@ -91,6 +91,14 @@ TEST(CalibrationIo, KalibrTimeshiftIsTheImuClockOffsetAndRoundTrips) {
   const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(text.rfind("timeshift")), '\n'));
   EXPECT_NE(skewed.warnings[0].find("camchain-imucam.yaml:" + std::to_string(line) + ": cam1"), std::string::npos) << skewed.warnings[0];
   EXPECT_NE(skewed.warnings[0].find("by 2.0 ms"), std::string::npos) << skewed.warnings[0];
+  // A shift for cam0 only (a hand-written file): cam0's, and nothing said of cam1.
+  text = test::readFile(camchain);
+  const std::size_t cam1_shift = text.rfind("  timeshift_cam_imu:");
+  text.erase(cam1_shift, text.find('\n', cam1_shift) + 1 - cam1_shift);
+  dir.write("cam0-only/camchain-imucam.yaml", text);
+  const camera::StereoRig cam0_only = loadKalibrCalibration(dir.file("cam0-only/camchain-imucam.yaml"));
+  EXPECT_EQ(cam0_only.imu_time_offset_s, -0.0125);
+  EXPECT_TRUE(cam0_only.warnings.empty());
 }
 
 TEST(CalibrationIo, EquidistantModelIsRead) {

@@ -95,9 +95,11 @@ StereoRig loadKalibrCalibration(const std::string& camchain_yaml, const std::str
     if (cam["rostopic"] && cam["rostopic"].IsScalar()) rig.topic[i] = cam["rostopic"].Scalar();
   }
   double timeshift[2] = {0.0, 0.0};
+  bool has_timeshift[2] = {false, false};
   for (int i = 0; i < 2; ++i) {
     const std::string cam = "cam" + std::to_string(i);
     if (!root[cam]["timeshift_cam_imu"]) continue;
+    has_timeshift[i] = true;
     timeshift[i] = yamlDouble(root[cam], "timeshift_cam_imu", camchain_yaml);
     if (!std::isfinite(timeshift[i]) || std::abs(timeshift[i]) > 1.0)
       throw InputError(camchain_yaml, yamlLine(root[cam]["timeshift_cam_imu"]),
@@ -106,9 +108,10 @@ StereoRig loadKalibrCalibration(const std::string& camchain_yaml, const std::str
   rig.imu_time_offset_s = timeshift[0];
   // edgevio takes a stereo pair as taken at once, on cam0's clock. A right
   // image 1 ms off moves the baseline by 1 mm per m/s of motion across it:
-  // about 1 % of an 11 cm baseline's depth at 1 m/s.
+  // about 1 % of an 11 cm baseline's depth at 1 m/s. (Kalibr writes a shift
+  // for every camera; a file with one only says nothing of the other.)
   constexpr double kStereoSkewWarningS = 1e-3;
-  if (std::abs(timeshift[1] - timeshift[0]) > kStereoSkewWarningS) {
+  if (has_timeshift[0] && has_timeshift[1] && std::abs(timeshift[1] - timeshift[0]) > kStereoSkewWarningS) {
     rig.warnings.push_back(formatText("%s:%zu: cam1's timeshift_cam_imu differs from cam0's by %.1f ms; edgevio takes both "
                                       "images at cam0's, so stereo depth is off while the rig moves: synchronise the "
                                       "cameras' triggers (or recalibrate, if they are)",
