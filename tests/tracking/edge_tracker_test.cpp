@@ -1,5 +1,6 @@
-// The tracker's use of the IMU: the translation check against its pose
-// prediction, and the gyroscope's rotation as the alignment's prior.
+// The tracker's checks against its prediction: the translation check against
+// the IMU's pose, the motion check against a constant-velocity one, and the
+// gyroscope's rotation as the alignment's prior.
 #include "edgevio/tracking/edge_tracker.h"
 
 #include <gtest/gtest.h>
@@ -23,7 +24,8 @@ struct Outcome {
 
 /// Keyframe at path sample i (at its true pose), then the frame three camera
 /// frames later tracked from the true pose shifted by `offset`.
-Outcome trackFrom(std::size_t i, const Vec3& offset, PredictionReliability reliable) {
+Outcome trackFrom(std::size_t i, const Vec3& offset, PredictionReliability reliable,
+                  std::optional<double> max_translation_m = std::nullopt) {
   const auto& fx = fixture();
   const auto& path = fx.path();
   const std::size_t j = i + 30;  // 200 Hz samples, 20 Hz frames
@@ -34,6 +36,7 @@ Outcome trackFrom(std::size_t i, const Vec3& offset, PredictionReliability relia
   Prediction pred;
   pred.T_w_b = SE3(path[j].T_w_b.so3(), path[j].T_w_b.translation() + offset);
   pred.reliable = reliable;
+  pred.max_translation_m = max_translation_m;
   Outcome o;
   o.track = tracker.track(prepareFrame(fx.frame(path[j].T_w_b, 150'000'000, j), fx.rectifier(), vo), *keyframe, path[i].T_w_b, pred);
   o.error_m = (o.track.T_w_b.translation() - path[j].T_w_b.translation()).norm();
@@ -65,6 +68,29 @@ TEST(EdgeTracker, AWrongPredictionDoesNotDragAGoodAlignment) {
   const Outcome rotation = trackFrom(kSample, offset, PredictionReliability::kRotation);
   EXPECT_EQ(rotation.track.check, PredictionCheck::kNone);
   EXPECT_LT(rotation.error_m, 0.01);
+}
+
+TEST(EdgeTracker, AnAlignmentBeyondThePredictionsReachIsRedoneAndRefused) {
+  // A constant-velocity prediction (no IMU) bounds how far the camera can be
+  // from it. 25 cm off, as above: the full pyramid reaches the truth, 25 cm
+  // from the prediction.
+  const Vec3 offset(0.0, 0.0, 0.25);
+  // Within a 30 cm reach: kept, unchecked.
+  const Outcome within = trackFrom(kSample, offset, PredictionReliability::kNone, 0.30);
+  EXPECT_EQ(within.track.check, PredictionCheck::kNone);
+  EXPECT_TRUE(within.track.passed());
+  EXPECT_LT(within.error_m, 0.01);
+  // Beyond a 10 cm reach: re-aligned from the prediction on the fine levels,
+  // which do not come back within 10 cm of it (they converge 0.72 m from the
+  // truth, above): refused.
+  const Outcome beyond = trackFrom(kSample, offset, PredictionReliability::kNone, 0.10);
+  EXPECT_EQ(beyond.track.check, PredictionCheck::kMotion);
+  EXPECT_FALSE(beyond.track.passed());
+  // A prediction 3 cm off is within that reach: the alignment is kept.
+  const Outcome near = trackFrom(kSample, Vec3(0.0, 0.0, 0.03), PredictionReliability::kNone, 0.10);
+  EXPECT_EQ(near.track.check, PredictionCheck::kNone);
+  EXPECT_TRUE(near.track.passed());
+  EXPECT_LT(near.error_m, 0.01);
 }
 
 /// The frame 30 samples (0.15 s) after kSample tracked against a keyframe

@@ -22,6 +22,7 @@ Cell predictionCheck(const R& r) {
   using tracking::PredictionCheck;
   const PredictionCheck c = r.gyro_check_failed           ? PredictionCheck::kGyro
                             : r.translation_check_failed ? PredictionCheck::kTranslation
+                            : r.motion_check_failed      ? PredictionCheck::kMotion
                                                          : PredictionCheck::kNone;
   return text(options::nameOf(tracking::kPredictionCheckChoices, c));
 }

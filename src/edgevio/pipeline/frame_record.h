@@ -54,6 +54,7 @@ struct FrameRecord {
   tracking::AlignmentResult alignment;
   bool gyro_check_failed = false;         ///< an alignment was redone: its rotation was far from the gyroscope's
   bool translation_check_failed = false;  ///< an alignment was redone: its translation was far from the IMU's
+  bool motion_check_failed = false;       ///< an alignment was redone: beyond the motion model's reach without the IMU
   int reference_points = 0;          ///< level-0 reference points of the keyframe it was aligned to
   std::int64_t reference_t_ns = -1;  ///< that keyframe's time: the tracking link's reference
   geometry::SE3 link_T_bn_br;        ///< the link as the body's motion (what a ground truth gives as T_w_bn⁻¹·T_w_br)

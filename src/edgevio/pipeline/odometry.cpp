@@ -196,9 +196,15 @@ tracking::Prediction Odometry::constantVelocityPrediction(std::int64_t t_ns) con
   // that passes the self check (docs/experiments/2026-12-02-imu-gap-bridge.md).
   tracking::Prediction p;
   p.T_w_b = T_w_b_last_;
-  if (t_before_last_ >= 0 && t_before_last_ < t_prev_)
-    p.T_w_b = geometry::interpolate(T_w_b_before_last_, T_w_b_last_,
-                                    1.0 + static_cast<double>(t_ns - t_prev_) / static_cast<double>(t_prev_ - t_before_last_));
+  if (t_before_last_ < 0 || t_before_last_ >= t_prev_) return p;
+  p.T_w_b = geometry::interpolate(T_w_b_before_last_, T_w_b_last_,
+                                  1.0 + static_cast<double>(t_ns - t_prev_) / static_cast<double>(t_prev_ - t_before_last_));
+  // Under a constant acceleration a, continuing the last interval dt0's
+  // motion over the next dt misses by a·dt·(dt + dt0)/2.
+  if (const double a = config_.tracking.constant_velocity_max_accel_mps2; a > 0) {
+    const double dt = toSeconds(t_ns - t_prev_), dt0 = toSeconds(t_prev_ - t_before_last_);
+    p.max_translation_m = 0.5 * a * dt * (dt + dt0);
+  }
   return p;
 }
 
@@ -214,6 +220,7 @@ Odometry::Tracked Odometry::track(const tracking::PreparedFrame& frame, const tr
     tracking::Track t = tracker_.track(frame, *k.data, keyframePose(k), p);
     r->gyro_check_failed |= t.check == tracking::PredictionCheck::kGyro;
     r->translation_check_failed |= t.check == tracking::PredictionCheck::kTranslation;
+    r->motion_check_failed |= t.check == tracking::PredictionCheck::kMotion;
     return t;
   };
   tracking::Track t = alignToCurrent();

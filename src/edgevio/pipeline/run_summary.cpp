@@ -17,6 +17,7 @@ void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns) {
   self_check_failures += failed_check;
   gyro_check_realignments += r.gyro_check_failed;
   translation_check_realignments += r.translation_check_failed;
+  motion_check_realignments += r.motion_check_failed;
   external_check_rejections += r.external_check == ExternalCheck::kRejected;
   estimator_resets += r.restart != WindowRestart::kNone;
   loop_closures += static_cast<std::size_t>(r.loop_links);
@@ -143,6 +144,9 @@ const std::vector<SummaryField>& summaryFields() {
        member<&S::gyro_check_realignments>},
       {"translation_check_realignments", "alignments redone because their translation was far from the IMU's",
        member<&S::translation_check_realignments>},
+      {"motion_check_realignments",
+       "alignments redone because, without the IMU, they lay beyond the constant-velocity prediction's reach",
+       member<&S::motion_check_realignments>},
       {"external_check_rejections", "tracking links the external check refused", member<&S::external_check_rejections>},
       {"estimator_resets", "restarts of the window (IMU gaps, estimates that blew up)", member<&S::estimator_resets>},
       {"loop_closures", "loop links that entered the window", member<&S::loop_closures>},

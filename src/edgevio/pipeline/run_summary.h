@@ -28,9 +28,11 @@ struct RunSummary {
   bool realtime = false;
   bool static_initialization = false;
   std::size_t frames = 0, keyframes = 0, self_check_failures = 0;
-  /// Alignments redone from the prediction: far from the gyroscope's rotation, or
-  /// (IMU modes) from the IMU's translation (tracking.gyro_check_deg, imu_translation_check_m).
-  std::size_t gyro_check_realignments = 0, translation_check_realignments = 0;
+  /// Alignments redone from the prediction: far from the gyroscope's rotation,
+  /// (IMU modes) from the IMU's translation, or (without the IMU) beyond the
+  /// motion model's reach (tracking.gyro_check_deg, imu_translation_check_m,
+  /// constant_velocity_max_accel_mps2).
+  std::size_t gyro_check_realignments = 0, translation_check_realignments = 0, motion_check_realignments = 0;
   std::size_t external_check_rejections = 0, estimator_resets = 0, loop_closures = 0;
   std::size_t back_links = 0;              ///< keyframe back links that entered the window
   std::size_t skipped_unreadable = 0;      ///< frames whose image did not decode or was missing

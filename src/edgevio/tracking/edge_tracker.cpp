@@ -60,6 +60,22 @@ AlignmentResult EdgeTracker::align(const vision::EdgePyramid& pyr, const Keyfram
     if (rotationError(fine.T_nr) > tracking_.gyro_check_deg) r.self_check_passed = false;
     return r;
   }
+  // Motion check: without the IMU the prediction is the last two frames'
+  // motion, continued, and nothing downstream checks the pose. An alignment
+  // whose camera lies beyond what any rig's acceleration reaches from it
+  // went to another basin; from the prediction, on the fine levels, the
+  // right one is the nearest.
+  const auto cameraShift = [&](const SE3& T_nr) {
+    return (T_nr.inverse().translation() - T_nr_init.inverse().translation()).norm();
+  };
+  if (prediction.max_translation_m && cameraShift(r.T_nr) > *prediction.max_translation_m) {
+    *check = PredictionCheck::kMotion;
+    const double ms = r.ms;
+    r = realignFine();
+    r.ms += ms;
+    if (cameraShift(r.T_nr) > *prediction.max_translation_m) r.self_check_passed = false;
+    return r;
+  }
   // Translation check: parallel edges (stripes, planks) leave the alignment
   // free along them, and the coarse levels' wide basin can slide a stripe or
   // more. The IMU's prediction from the window's newest state is good to a few

@@ -112,14 +112,21 @@ struct Prediction {
   /// Body → rectified left camera when the window corrects the calibration's
   /// (estimator.estimate_cam_imu_rotation, _translation); empty: the calibration's.
   std::optional<geometry::SE3> T_b_c;
+  /// How far [m] the frame's camera can be from the predicted one by the motion
+  /// model (a constant-velocity prediction: tracking.constant_velocity_max_accel_mps2
+  /// over the interval); empty: no bound. An alignment beyond it is redone
+  /// from the prediction on the fine levels and fails if it stays beyond.
+  std::optional<double> max_translation_m;
 };
 
 /// Which check of an alignment against its prediction re-aligned it.
-enum class PredictionCheck { kNone, kGyro, kTranslation };
+enum class PredictionCheck { kNone, kGyro, kTranslation, kMotion };
 inline constexpr options::Choice<PredictionCheck> kPredictionCheckChoices[] = {
     {PredictionCheck::kNone, "-", "the first alignment was kept"},
     {PredictionCheck::kGyro, "gyro", "its rotation was far from the gyroscope's: re-aligned on the fine levels"},
-    {PredictionCheck::kTranslation, "translation", "its translation was far from the IMU's: re-aligned, the closer fit kept"}};
+    {PredictionCheck::kTranslation, "translation", "its translation was far from the IMU's: re-aligned, the closer fit kept"},
+    {PredictionCheck::kMotion, "motion",
+     "beyond the motion model's reach from a prediction without the IMU: re-aligned, failed if still beyond"}};
 
 /// A frame aligned to a keyframe.
 struct Track {

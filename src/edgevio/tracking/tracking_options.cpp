@@ -19,6 +19,11 @@ EDGEVIO_OPTIONS_TABLE(TrackingOptions,
            "IMU modes: an alignment this far from the IMU's predicted translation is redone from the prediction on the fine "
            "levels; the fit closer to the edges is kept",
            above(0).orOff()),
+    number("constant_velocity_max_accel_mps2", &S::constant_velocity_max_accel_mps2, 100.0, "m/s^2",
+           "without a gyroscope reading (an IMU gap) a frame is predicted by the last two frames' motion, continued; an "
+           "alignment further from that prediction than this acceleration over the interval reaches is redone from the "
+           "prediction on the fine levels, and fails the self check if it stays beyond (10 g: no rig's motion, another basin)",
+           above(0).orOff()),
     number("rotation_prior_deg", &S::rotation_prior_deg, 0.05, "deg",
            "IMU modes: std. dev. of the gyroscope's rotation since the keyframe as a prior of the alignment, for 1 px of edge "
            "noise",

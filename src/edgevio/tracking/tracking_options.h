@@ -10,7 +10,7 @@ struct TrackingOptions {
   int keyframe_min_points;
   double keyframe_min_visible_ratio, gyro_check_deg;
   int gyro_check_realign_levels;
-  double imu_translation_check_m, rotation_prior_deg, rotation_prior_fraction;
+  double imu_translation_check_m, constant_velocity_max_accel_mps2, rotation_prior_deg, rotation_prior_fraction;
   int lost_after_failures;
   double lost_gyro_disagreement_deg;
   int lost_gyro_contradictions;
