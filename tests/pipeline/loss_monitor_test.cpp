@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <limits>
 
 namespace edgevio::pipeline {
@@ -18,16 +19,18 @@ tracking::TrackingOptions lossOptions(int lost_after, double gyro_deg, int contr
   return o;
 }
 
-FrameRecord frame(int k, bool passed) {
+/// Frame k (50 ms apart); `carried`: the IMU modes' window carried it (a window state).
+FrameRecord frame(int k, bool passed, bool carried = false) {
   FrameRecord r;
   r.t_ns = 1000000000LL + k * 50000000LL;
   r.aligned = k > 0;
   r.alignment.self_check_passed = passed;
+  if (carried) r.state = imu::NavState{};
   return r;
 }
 
 TEST(LossMonitor, ConsecutiveFailuresLoseTheEstimateFromTheFirstUntilTrackedAgain) {
-  LossMonitor m(false, lossOptions(3, 2.0, 3));
+  LossMonitor m(lossOptions(3, 2.0, 3));
   std::vector<FrameRecord> r;
   // Frame 0 is a first frame; 2-3 fail (two: not lost); 5-9 fail; 10 tracks again.
   for (int k = 0; k <= 11; ++k) r.push_back(frame(k, !(k == 2 || k == 3 || (k >= 5 && k <= 9))));
@@ -48,7 +51,7 @@ TEST(LossMonitor, ThreeFramesTheGyroscopeContradictsAmongTenAreALoss) {
   // tracked frame finds fewer than 3 in its window of 10: frame 13, when
   // frame 3 has left it.
   const auto run = [](double threshold, int contradictions, double nan_or_disagreement) {
-    LossMonitor m(false, lossOptions(10, threshold, contradictions));
+    LossMonitor m(lossOptions(10, threshold, contradictions));
     std::vector<FrameRecord> r;
     for (int k = 0; k <= 15; ++k) {
       r.push_back(frame(k, true));
@@ -69,28 +72,31 @@ TEST(LossMonitor, ThreeFramesTheGyroscopeContradictsAmongTenAreALoss) {
     for (const FrameRecord& x : none) EXPECT_EQ(x.status, TrackingStatus::kOk) << x.t_ns;
 }
 
-TEST(LossMonitor, ScatteredFailuresAreEvidenceWithoutTheImuOnly) {
+TEST(LossMonitor, ScatteredFailuresAreEvidenceWhereTheImuDidNotCarryTheFrame) {
   // Frames 2 and 5 fail the self check, frame 7 rotates 2.5 deg off the
   // gyroscope: three suspects among ten. Without the IMU a failed frame's
   // pose is a guess, so that is a loss; with the IMU, which carries failed
-  // frames, one contradiction is none.
-  const auto run = [](bool imu) {
-    LossMonitor m(imu, lossOptions(10, 2.0, 3));
+  // frames, one contradiction is none; in an IMU gap over frames 1-6 the
+  // IMU modes carry nothing, as the visual modes.
+  const auto run = [](const std::function<bool(int)>& carried) {
+    LossMonitor m(lossOptions(10, 2.0, 3));
     std::vector<FrameRecord> r;
     for (int k = 0; k <= 16; ++k) {
-      r.push_back(frame(k, !(k == 2 || k == 5)));
+      r.push_back(frame(k, !(k == 2 || k == 5), carried(k)));
       r.back().gyro_disagreement_deg = k == 7 ? 2.5 : 0.2;
     }
     for (FrameRecord& x : r) m.update(&x);
     return r;
   };
-  const std::vector<FrameRecord> visual = run(false), inertial = run(true);
+  const std::vector<FrameRecord> visual = run([](int) { return false; }), inertial = run([](int) { return true; }),
+                                 gap = run([](int k) { return k < 1 || k > 6; });
   // Lost at 7 (since 2); frame 8 tracks but its window (frames 0-8 aligned
   // from 1) still holds 3 suspects, and so on until frame 12, whose window
   // (3-12) holds 2.
   for (int k = 0; k <= 16; ++k) {
     EXPECT_EQ(visual[k].status == TrackingStatus::kLost, k >= 7 && k <= 11) << k;
     EXPECT_EQ(inertial[k].status, TrackingStatus::kOk) << k;
+    EXPECT_EQ(gap[k].status, visual[k].status) << k;
   }
   EXPECT_EQ(visual[7].lost_since_ns, visual[2].t_ns);
   EXPECT_EQ(visual[7].lost_reason, "3 of the last 7 frames failed the self check or their rotation is over 2.0 deg from the gyroscope's");
@@ -99,10 +105,10 @@ TEST(LossMonitor, ScatteredFailuresAreEvidenceWithoutTheImuOnly) {
 TEST(LossMonitor, AFrozenImageIsLostAtOnceWithoutTheImuAndAFailureWithIt) {
   // Frames 2-5 repeat frame 1's image and align to it (self check passed).
   const auto run = [](bool imu) {
-    LossMonitor m(imu, lossOptions(3, 2.0, 3));
+    LossMonitor m(lossOptions(3, 2.0, 3));
     std::vector<FrameRecord> r;
     for (int k = 0; k <= 7; ++k) {
-      r.push_back(frame(k, true));
+      r.push_back(frame(k, true, imu));
       r.back().frozen_image = k >= 2 && k <= 5;
     }
     for (FrameRecord& x : r) m.update(&x);
@@ -118,7 +124,7 @@ TEST(LossMonitor, AFrozenImageIsLostAtOnceWithoutTheImuAndAFailureWithIt) {
 }
 
 TEST(LossMonitor, ANonFinitePoseIsLostAtOnce) {
-  LossMonitor m(false, lossOptions(10, 2.0, 3));
+  LossMonitor m(lossOptions(10, 2.0, 3));
   FrameRecord ok = frame(1, true), bad = frame(2, true), again = frame(3, true);
   bad.T_w_b = geometry::SE3(geometry::SO3(), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
   m.update(&ok);
@@ -136,7 +142,7 @@ TEST(LossMonitor, AStepNoRigCouldAccelerateToIsLostUntilThePosesAreSmoothAgain) 
   // implies 0.5 m / (50 ms)^2 = 200 m/s^2 into frame 4 and as much out of it
   // (frame 5's second difference), then the motion is smooth again.
   const auto run = [](double accel_mps2) {
-    LossMonitor m(false, lossOptions(10, 2.0, 3, accel_mps2));
+    LossMonitor m(lossOptions(10, 2.0, 3, accel_mps2));
     std::vector<FrameRecord> r;
     for (int k = 0; k <= 7; ++k) {
       r.push_back(frame(k, true));
@@ -162,7 +168,7 @@ TEST(LossMonitor, AnEstimateRunningAwayAtASteadySpeedIsLost) {
   const auto run = [](double speed_mps) {
     tracking::TrackingOptions o = lossOptions(10, 2.0, 3, 0.0);
     o.lost_speed_mps = speed_mps;
-    LossMonitor m(true, o);
+    LossMonitor m(o);
     std::vector<FrameRecord> r;
     for (int k = 0; k <= 8; ++k) {
       r.push_back(frame(k, true));

@@ -9,6 +9,7 @@ namespace edgevio::pipeline {
 
 void LossMonitor::update(FrameRecord* r) {
   const bool failed = r->aligned && (!r->selfCheckPassed() || r->frozen_image);
+  const bool carried = r->state.has_value();  // the window's IMU state carried the frame
   // (without a gyroscope reading the disagreement is NaN and compares false)
   const bool contradicted = r->aligned && gyro_contradictions_ > 0 && gyro_disagreement_deg_ > 0 &&
                             r->gyro_disagreement_deg > gyro_disagreement_deg_;
@@ -16,12 +17,10 @@ void LossMonitor::update(FrameRecord* r) {
   const bool too_fast = speed_mps_ > 0 && r->implied_speed_mps > speed_mps_;
   const bool implausible = (accel_mps2_ > 0 && r->implied_accel_mps2 > accel_mps2_) || too_fast;
   if (r->aligned) {
-    recent_.push_back({r->t_ns, contradicted, failed});
+    recent_.push_back({r->t_ns, contradicted, failed && !carried});
     if (recent_.size() > static_cast<std::size_t>(lost_after_)) recent_.pop_front();
   }
-  // Without the IMU a failed frame's pose is a guess: in the visual modes
-  // failures are evidence beside the gyroscope's contradictions.
-  const auto suspect = [this](const Recent& f) { return f.contradicted || (!imu_ && f.failed); };
+  const auto suspect = [](const Recent& f) { return f.contradicted || f.guessed; };
   int suspects = static_cast<int>(std::count_if(recent_.begin(), recent_.end(), suspect));
   if (failed) {
     if (failures_ == 0) first_failure_ns_ = r->t_ns;
@@ -44,7 +43,7 @@ void LossMonitor::update(FrameRecord* r) {
   };
   if (!r->T_w_b.translation().allFinite() || !r->T_w_b.so3().matrix().allFinite()) {
     if (lost_ == Cause::kNone) begin(Cause::kFailures, r->t_ns, "non-finite pose");
-  } else if (lost_ == Cause::kNone && r->frozen_image && !imu_) {
+  } else if (lost_ == Cause::kNone && r->frozen_image && !carried) {
     begin(Cause::kFailures, r->t_ns, "the image repeats the previous frame's to the last pixel (a stalled or blank camera)");
   } else if (lost_ == Cause::kNone && failed && failures_ >= lost_after_) {
     begin(Cause::kFailures, first_failure_ns_, std::to_string(failures_) + " consecutive self-check failures");

@@ -13,14 +13,14 @@
 //    aligned frames rotating more than tracking.lost_gyro_disagreement_deg
 //    away from the gyroscope: frozen or occluded images and a visual estimate
 //    drifting away pass the self check, but the gyroscope does not agree.
-//    In the visual modes a self-check failure counts as such evidence too
-//    (its pose is a guess); in the IMU modes, which carry a failed frame, it
-//    does not. Such a loss ends at a tracked frame once fewer remain in that
-//    window;
-//  - a frozen image (the previous frame's to the last pixel): in the visual
-//    modes the pose is then a guess at once, until a new image tracks; in
-//    the IMU modes, which carry the pose through, it counts as a self-check
-//    failure;
+//    A self-check failure counts as such evidence too where the IMU did not
+//    carry the frame (the visual modes, an IMU gap, before the window's
+//    first IMU reading: a frame without a window state), since its pose is
+//    then a guess; a frame the IMU carried is not. Such a loss ends at a
+//    tracked frame once fewer remain in that window;
+//  - a frozen image (the previous frame's to the last pixel): where the IMU
+//    did not carry the frame its pose is a guess at once, until a new image
+//    tracks; where it did, it counts as a self-check failure;
 //  - a pose whose step implies an acceleration beyond tracking.lost_accel_mps2
 //    or a speed beyond tracking.lost_speed_mps (the alignment went to another
 //    basin, or the estimate exploded or runs away); such a loss ends at a
@@ -38,9 +38,8 @@ class LossMonitor {
  public:
   /// The tracking.lost_* options; lost_gyro_contradictions or
   /// lost_gyro_disagreement_deg 0: no gyroscope signal; lost_accel_mps2 or lost_speed_mps 0: no such signal.
-  LossMonitor(bool imu, const tracking::TrackingOptions& o)
-      : imu_(imu),
-        lost_after_(o.lost_after_failures),
+  explicit LossMonitor(const tracking::TrackingOptions& o)
+      : lost_after_(o.lost_after_failures),
         gyro_disagreement_deg_(o.lost_gyro_disagreement_deg),
         gyro_contradictions_(o.lost_gyro_contradictions),
         accel_mps2_(o.lost_accel_mps2),
@@ -53,17 +52,16 @@ class LossMonitor {
   enum class Cause { kNone, kFailures, kEvidence, kImplausibleMotion };
   struct Recent {
     std::int64_t t_ns;
-    bool contradicted, failed;
+    bool contradicted, guessed;  ///< the gyroscope contradicted it; it failed and the IMU did not carry it
   };
 
-  bool imu_;
   int lost_after_;
   double gyro_disagreement_deg_;
   int gyro_contradictions_;
   double accel_mps2_, speed_mps_;
   int failures_ = 0;  ///< consecutive self-check failures
   std::int64_t first_failure_ns_ = -1;
-  /// The last lost_after_ aligned frames: their times, whether the gyroscope contradicted them and whether they failed.
+  /// The last lost_after_ aligned frames: their times, whether the gyroscope contradicted them and whether their pose is a guess.
   std::deque<Recent> recent_;
   Cause lost_ = Cause::kNone;
 };

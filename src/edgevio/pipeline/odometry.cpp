@@ -36,7 +36,7 @@ Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tra
       T_b_c_(T_b_c),
       realtime_(realtime),
       pictures_(pictures),
-      loss_(mode.imu, config.tracking) {
+      loss_(config.tracking) {
   if (mode.imu || mode.loop) estimator_.emplace(config.estimator, noise, T_b_c, mode.imu, init.gyro_bias);
 }
 
