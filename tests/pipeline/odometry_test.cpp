@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <map>
+#include <set>
 
 #include "common/imu_scenario.h"
 #include "edgevio/sim/random.h"
@@ -35,6 +36,8 @@ class FakeTracker final : public tracking::Tracker {
   std::int64_t keyframe_span_ns = 6 * kFrameNs;
   /// Frames whose link comes out this far off (a wrong minimum the self check cannot see).
   std::map<std::int64_t, SE3> corrupted;
+  /// Frames whose alignment fails.
+  std::set<std::int64_t> failing;
   double sigma_t = 0.002, sigma_r = 0.002;
   mutable int keyframes_made = 0;
   /// Per frame: the predicted camera position (in the estimate's world) and the prediction's bound on its error.
@@ -54,7 +57,7 @@ class FakeTracker final : public tracking::Tracker {
     const Vec3 predicted_camera = (prediction.T_w_b * T_b_c_).translation();
     predictions[frame.t_ns] = {predicted_camera, prediction.max_translation_m};
     const std::int64_t span = frame.t_ns - keyframe.t_ns;
-    t.alignment.self_check_passed = span <= max_span_ns;
+    t.alignment.self_check_passed = span <= max_span_ns && failing.count(frame.t_ns) == 0;
     if (!t.passed()) return t;
     sim::Rng rng(sim::hashCombine(static_cast<std::uint64_t>(frame.t_ns), static_cast<std::uint64_t>(keyframe.t_ns)));
     Vec6 noise;
@@ -211,15 +214,22 @@ TEST(Odometry, AKeyframeLeavingTheWindowIsReplacedByTheNewestFrame) {
   expectReferencesAreKeyframes(run);
 }
 
+/// 0.3 s without IMU readings, from 0.5 s after the first frame of runOdometry.
+struct ImuGap {
+  std::int64_t begin = scenario().spline.beginNs() + 1500000000LL, end = begin + 300000000;
+  std::vector<imu::ImuSample> imu;
+  ImuGap() {
+    for (const imu::ImuSample& s : scenario().imu.samples)
+      if (s.t_ns <= begin || s.t_ns >= end) imu.push_back(s);
+  }
+};
+
 TEST(Odometry, AnImuGapIsBridgedByTheEdgesAndRestartsTheWindowOnce) {
-  // 0.3 s without IMU readings, from 0.5 s after the first frame.
   const test::ImuScenario& sc = scenario();
-  const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL, gap_begin = t0 + 500000000, gap_end = gap_begin + 300000000;
-  std::vector<imu::ImuSample> gappy;
-  for (const imu::ImuSample& s : sc.imu.samples)
-    if (s.t_ns <= gap_begin || s.t_ns >= gap_end) gappy.push_back(s);
+  const ImuGap gap;
+  const std::int64_t gap_begin = gap.begin, gap_end = gap.end;
   FakeTracker tracker(sc, sc.rig.T_b_c[0]);
-  const OdometryRun run = runOdometry({true, false}, testConfig(), tracker, 40, &gappy);
+  const OdometryRun run = runOdometry({true, false}, testConfig(), tracker, 40, &gap.imu);
   int restarts = 0, bridged = 0;
   for (std::size_t k = 1; k < run.records.size(); ++k) {
     const FrameRecord& r = run.records[k];
@@ -235,6 +245,7 @@ TEST(Odometry, AnImuGapIsBridgedByTheEdgesAndRestartsTheWindowOnce) {
     if (r.restart == WindowRestart::kNone) continue;
     ++restarts;
     EXPECT_EQ(r.restart, WindowRestart::kImuGap);
+    EXPECT_EQ(r.events.back(), "IMU back after a gap: estimator restarted at the previous frame");  // the bridge held
     // The first frame after the gap restarts the window at its predecessor,
     // which is (or becomes) the keyframe the frame is linked to.
     EXPECT_TRUE(before.t_ns > gap_end && run.records[k - 2].t_ns <= gap_end) << r.t_ns;
@@ -253,17 +264,14 @@ TEST(Odometry, InAnImuGapAnAlignmentBeyondTheConstantVelocityReachIsRefused) {
   // interval's motion misses a rig accelerating at a by a·dt·(dt + dt0)/2:
   // at 20 Hz and tracking.constant_velocity_max_accel_mps2 = 100 m/s², 0.25 m.
   const test::ImuScenario& sc = scenario();
-  const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL, gap_begin = t0 + 500000000, gap_end = gap_begin + 300000000;
-  std::vector<imu::ImuSample> gappy;
-  for (const imu::ImuSample& s : sc.imu.samples)
-    if (s.t_ns <= gap_begin || s.t_ns >= gap_end) gappy.push_back(s);
-  const std::int64_t wrong = gap_begin + 3 * kFrameNs;
+  const ImuGap gap;
+  const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL, wrong = gap.begin + 3 * kFrameNs;
   const auto bridge = [&](double max_accel_mps2) {
     FakeTracker tracker(sc, sc.rig.T_b_c[0]);
     tracker.corrupted[wrong] = SE3(SO3(), Vec3(0.3, -0.4, 0.0));
     Config c = testConfig();
     c.tracking.constant_velocity_max_accel_mps2 = max_accel_mps2;
-    return std::make_pair(runOdometry({true, false}, c, tracker, 40, &gappy), tracker.predictions);
+    return std::make_pair(runOdometry({true, false}, c, tracker, 40, &gap.imu), tracker.predictions);
   };
   const auto [run, predictions] = bridge(100.0);
   // The estimate's world: the static start's attitude at the origin (runOdometry).
@@ -290,6 +298,27 @@ TEST(Odometry, InAnImuGapAnAlignmentBeyondTheConstantVelocityReachIsRefused) {
   EXPECT_LT(run.max_position_error_m, 0.05);
   // Without the bound the wrong basin becomes the pose (and the next frames' prediction).
   EXPECT_GT(bridge(0.0).first.max_position_error_m, 0.3);
+}
+
+TEST(Odometry, AfterABridgeTheEdgesLostTheWindowEstimatesItsTiltAnew) {
+  // Every frame in the gap fails its alignment: their poses are guesses, the
+  // loss monitor says lost, and the restart leaves roll and pitch to the IMU
+  // and the links (VioEstimator.ARestartWithAFreeTiltFindsItAnewFromTheImuAndTheLinks).
+  const test::ImuScenario& sc = scenario();
+  const ImuGap gap;
+  FakeTracker tracker(sc, sc.rig.T_b_c[0]);
+  for (std::int64_t t = sc.spline.beginNs() + 1000000000LL; t < gap.end + kFrameNs; t += kFrameNs)
+    if (t > gap.begin) tracker.failing.insert(t);
+  const OdometryRun run = runOdometry({true, false}, testConfig(), tracker, 40, &gap.imu);
+  int restarts = 0;
+  for (const FrameRecord& r : run.records) {
+    if (r.restart == WindowRestart::kNone) continue;
+    ++restarts;
+    EXPECT_EQ(r.restart, WindowRestart::kImuGap);
+    EXPECT_EQ(r.events.back(),
+              "IMU back after a gap the edges lost: estimator restarted at the previous frame, roll and pitch estimated anew");
+  }
+  EXPECT_EQ(restarts, 1);
 }
 
 TEST(Odometry, EdgeOnlyChainsTheLinks) {

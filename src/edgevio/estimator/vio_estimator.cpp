@@ -71,12 +71,12 @@ void VioEstimator::initialize(std::int64_t t_ns, const imu::NavState& x, bool ve
   window_.prior.b = Eigen::VectorXd::Zero(15);
 }
 
-void VioEstimator::restartAfterGap(std::int64_t t_ns, const SE3& T_w_b, const Vec3& v_w) {
+void VioEstimator::restartAfterGap(std::int64_t t_ns, const SE3& T_w_b, const Vec3& v_w, bool attitude_known) {
   imu::NavState x = newest();
   x.R_w_b = T_w_b.so3();
   x.p_w = T_w_b.translation();
   x.v_w = v_w;
-  initialize(t_ns, x, false, true);
+  initialize(t_ns, x, false, attitude_known);
 }
 
 void VioEstimator::restartAfterBlowUp(const SE3& pose) {

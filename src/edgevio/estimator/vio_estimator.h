@@ -70,7 +70,9 @@ class VioEstimator {
   /// Restarts the window at t_ns after the inertial chain broke (an IMU gap):
   /// the newest state's biases carry over, at the pose T_w_b; v_w is the
   /// velocity's starting value (free in the window: estimated anew).
-  void restartAfterGap(std::int64_t t_ns, const geometry::SE3& T_w_b, const Vec3& v_w);
+  /// `attitude_known`: T_w_b's roll and pitch get the initial tilt prior;
+  /// otherwise the window estimates them anew from the IMU and the links.
+  void restartAfterGap(std::int64_t t_ns, const geometry::SE3& T_w_b, const Vec3& v_w, bool attitude_known);
 
   const imu::NavState& newest() const { return window_.states.back().x; }
   std::int64_t newestTime() const { return window_.states.back().t_ns; }

@@ -47,6 +47,8 @@ class LossMonitor {
 
   /// Sets r->status, and r->lost_since_ns and r->lost_reason where a loss begins.
   void update(FrameRecord* r);
+  /// Whether the last frame updated was lost.
+  bool lost() const { return lost_ != Cause::kNone; }
 
  private:
   enum class Cause { kNone, kFailures, kEvidence, kImplausibleMotion };

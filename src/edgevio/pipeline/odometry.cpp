@@ -170,13 +170,20 @@ void Odometry::restartAfterImuGap(FrameRecord* r) {
   // restarts once, at that frame, at the pose the edges carried it to, with
   // the biases from before the gap. The velocity starts from the last two
   // frames' (the state before the gap is stale by the gap's length) and is
-  // free in the window.
+  // free in the window. The carried roll and pitch are held as after a
+  // static start unless the bridge was lost: then they may be tens of
+  // degrees off, and a tight prior on a wrong tilt fights the IMU until the
+  // window blows up; left free, the IMU and the links find it anew
+  // (docs/experiments/2026-12-03-imu-gap-motion-check.md).
   Vec3 v_w = estimator_->newest().v_w;
   if (t_before_last_ >= 0 && t_before_last_ < t_prev_)
     v_w = (T_w_b_last_.translation() - T_w_b_before_last_.translation()) / toSeconds(t_prev_ - t_before_last_);
-  estimator_->restartAfterGap(t_prev_, T_w_b_last_, v_w);
+  const bool bridge_lost = loss_.lost();
+  estimator_->restartAfterGap(t_prev_, T_w_b_last_, v_w, !bridge_lost);
   r->restart = WindowRestart::kImuGap;
-  r->events.push_back("IMU back after a gap: estimator restarted at the previous frame");
+  r->events.push_back(bridge_lost ? "IMU back after a gap the edges lost: estimator restarted at the previous frame, roll and pitch "
+                                    "estimated anew"
+                                  : "IMU back after a gap: estimator restarted at the previous frame");
   keyframeForRestart(t_prev_, r);
 }
 
