@@ -136,9 +136,10 @@ Vec15 Preintegration::residual(const NavState& i, const NavState& j, Mat15* J_i,
 }
 
 std::optional<Preintegration> preintegrate(const std::vector<ImuSample>& imu, std::int64_t t0, std::int64_t t1,
-                                           const Vec3& b_a, const Vec3& b_g, const ImuNoise& noise, double max_gap_s) {
+                                           const Vec3& b_a, const Vec3& b_g, const ImuNoise& noise, double max_gap_s,
+                                           Propagation propagation) {
   if (imuGapWithin(imu, t0, t1, max_gap_s)) return std::nullopt;
-  Preintegration p(b_a, b_g, noise);
+  Preintegration p(b_a, b_g, noise, propagation);
   const bool covered = forEachImuInterval(imu, t0, t1, [&](double dt, const Vec3& a0, const Vec3& w0, const Vec3& a1, const Vec3& w1) {
     p.integrate(dt, a0, w0, a1, w1);
   });

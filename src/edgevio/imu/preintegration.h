@@ -97,7 +97,7 @@ class Preintegration {
 /// consecutive readings are more than max_gap_s apart (a gap is not bridged).
 std::optional<Preintegration> preintegrate(const std::vector<ImuSample>& imu, std::int64_t t0_ns, std::int64_t t1_ns,
                                            const Vec3& b_a, const Vec3& b_g, const ImuNoise& noise,
-                                           double max_gap_s = 1.0);
+                                           double max_gap_s = 1.0, Propagation propagation = Propagation::kFull);
 
 /// The IMU's prediction of state j from state i (METHOD.md §4), with the
 /// deltas corrected to first order for i's biases as in the residual:

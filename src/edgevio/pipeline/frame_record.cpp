@@ -58,6 +58,10 @@ constexpr FrameColumn kColumns[] = {
        [](const R& r) { return real(r.implied_accel_mps2); }, 2},
       {"implied_speed_mps", "m/s", "the speed the estimate implies: this and the previous frame's positions apart over their time",
        [](const R& r) { return real(r.implied_speed_mps); }, 2},
+      {"accel_disagreement_m", "m",
+       "the position against the accelerometer's prediction from the previous two frames' poses (their velocity between "
+       "them, the estimated attitudes, the newest bias estimates): a step no measured force explains",
+       [](const R& r) { return real(r.accel_disagreement_m); }, 4},
       {"reference_timestamp_ns", "ns", "the keyframe's time: the tracking link's reference (-1: none)",
        [](const R& r) { return integer(r.reference_t_ns); }},
       {"link_tx", "m", "the tracking link as the body's motion T_bn_br (= T_w_bn^-1 T_w_br of a ground truth): translation x",

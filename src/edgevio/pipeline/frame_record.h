@@ -87,6 +87,10 @@ struct FrameRecord {
   double implied_accel_mps2 = std::numeric_limits<double>::quiet_NaN();
   /// |first difference| of the last two poses' positions [m/s] (NaN on a first frame).
   double implied_speed_mps = std::numeric_limits<double>::quiet_NaN();
+  /// How far the pose lies from where the accelerometer puts it, given the
+  /// previous two poses [m] (NaN before the third frame or without IMU
+  /// readings over both intervals): a step no force explains.
+  double accel_disagreement_m = std::numeric_limits<double>::quiet_NaN();
   std::int64_t lost_since_ns = -1;  ///< where a loss this frame declared began (its first symptom); -1: none began here
   std::string lost_reason;          ///< why, when a loss began here
   geometry::SE3 T_w_b;                ///< the causal pose estimate of the frame

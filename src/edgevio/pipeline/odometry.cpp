@@ -63,17 +63,7 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   // gives directly: T_w_bn⁻¹·T_w_br), so the front end can be judged alone.
   const SE3 T_b_c = cameraExtrinsics();
   r.link_T_bn_br = T_b_c * r.alignment.T_nr * T_b_c.inverse();
-  const Vec3 b_g = r.state ? r.state->b_g : init_.gyro_bias;
-  if (const auto dR = gyroRotation(t_prev_, r.t_ns, b_g))
-    r.gyro_disagreement_deg = (dR->inverse() * T_w_b_last_.so3().inverse() * r.T_w_b.so3()).log().norm() * kRadToDeg;
-  if (t_prev_ >= 0 && t_prev_ < r.t_ns)
-    r.implied_speed_mps = (r.T_w_b.translation() - T_w_b_last_.translation()).norm() / toSeconds(r.t_ns - t_prev_);
-  if (t_before_last_ >= 0 && t_before_last_ < t_prev_ && t_prev_ < r.t_ns) {
-    const double dt1 = toSeconds(t_prev_ - t_before_last_), dt2 = toSeconds(r.t_ns - t_prev_);
-    const Vec3 v1 = (T_w_b_last_.translation() - T_w_b_before_last_.translation()) / dt1;
-    const Vec3 v2 = (r.T_w_b.translation() - T_w_b_last_.translation()) / dt2;
-    r.implied_accel_mps2 = (2.0 * (v2 - v1) / (dt1 + dt2)).norm();
-  }
+  recordMotion(&r);
   loss_.update(&r);
   t_before_last_ = t_prev_;
   T_w_b_before_last_ = T_w_b_last_;
@@ -356,14 +346,46 @@ SE3 Odometry::keyframePose(const Keyframe& k) const {
   return k.T_w_b;
 }
 
+void Odometry::recordMotion(FrameRecord* r) const {
+  const Vec3 b_g = r->state ? r->state->b_g : init_.gyro_bias;
+  const Vec3 b_a = r->state ? r->state->b_a : Vec3::Zero();
+  if (const auto dR = gyroRotation(t_prev_, r->t_ns, b_g))
+    r->gyro_disagreement_deg = (dR->inverse() * T_w_b_last_.so3().inverse() * r->T_w_b.so3()).log().norm() * kRadToDeg;
+  if (t_prev_ >= 0 && t_prev_ < r->t_ns)
+    r->implied_speed_mps = (r->T_w_b.translation() - T_w_b_last_.translation()).norm() / toSeconds(r->t_ns - t_prev_);
+  if (t_before_last_ < 0 || t_before_last_ >= t_prev_ || t_prev_ >= r->t_ns) return;
+  const double dt1 = toSeconds(t_prev_ - t_before_last_), dt2 = toSeconds(r->t_ns - t_prev_);
+  const Vec3 v1 = (T_w_b_last_.translation() - T_w_b_before_last_.translation()) / dt1;
+  const Vec3 v2 = (r->T_w_b.translation() - T_w_b_last_.translation()) / dt2;
+  r->implied_accel_mps2 = (2.0 * (v2 - v1) / (dt1 + dt2)).norm();
+  // The accelerometer's account (METHOD.md §4's propagation, twice, the
+  // velocity eliminated): v_0 is what carries p_0 to p_1 under the first
+  // interval's readings, and p_2 follows from p_1 with v_1.
+  const double max_gap_s = config_.estimator.max_imu_gap_s;
+  const auto first = imu::preintegrate(imu_, imuTime(t_before_last_), imuTime(t_prev_), b_a, b_g, imu::ImuNoise{}, max_gap_s,
+                                       imu::Propagation::kDeltasOnly);
+  const auto second = imu::preintegrate(imu_, imuTime(t_prev_), imuTime(r->t_ns), b_a, b_g, imu::ImuNoise{}, max_gap_s,
+                                        imu::Propagation::kDeltasOnly);
+  if (!first || !second) return;
+  imu::NavState x;
+  x.R_w_b = T_w_b_before_last_.so3();
+  x.p_w = T_w_b_before_last_.translation();
+  x.b_a = b_a;
+  x.b_g = b_g;
+  const double d0 = first->deltaT();
+  x.v_w = (T_w_b_last_.translation() - x.p_w + 0.5 * d0 * d0 * imu::gravity() - x.R_w_b * first->alpha()) / d0;
+  x.v_w = imu::predictState(x, *first).v_w;
+  x.R_w_b = T_w_b_last_.so3();
+  x.p_w = T_w_b_last_.translation();
+  r->accel_disagreement_m = (imu::predictState(x, *second).p_w - r->T_w_b.translation()).norm();
+}
+
+std::int64_t Odometry::imuTime(std::int64_t t_ns) const { return windowed() ? estimator_->imuTime(t_ns) : t_ns; }
+
 std::optional<SO3> Odometry::gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const {
   SO3 R;
   if (t0 < 0) return std::nullopt;
-  if (windowed()) {
-    t0 = estimator_->imuTime(t0);
-    t1 = estimator_->imuTime(t1);
-  }
-  if (!imu::integrateGyro(imu_, t0, t1, bias, config_.estimator.max_imu_gap_s, &R)) return std::nullopt;
+  if (!imu::integrateGyro(imu_, imuTime(t0), imuTime(t1), bias, config_.estimator.max_imu_gap_s, &R)) return std::nullopt;
   return R;
 }
 

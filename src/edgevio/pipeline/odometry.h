@@ -100,6 +100,11 @@ class Odometry {
 
   geometry::SE3 keyframePose(const Keyframe& k) const;
   std::optional<geometry::SO3> gyroRotation(std::int64_t t0, std::int64_t t1, const Vec3& bias) const;
+  /// A camera time on the IMU's clock (the window's time offset estimate).
+  std::int64_t imuTime(std::int64_t t_ns) const;
+  /// The loss monitor's motion signals of the frame's pose: implied speed and
+  /// acceleration, the gyroscope's and the accelerometer's disagreement.
+  void recordMotion(FrameRecord* r) const;
   bool windowed() const { return estimator_.has_value(); }
   /// Body → camera: the window's estimate when it corrects the calibration's.
   geometry::SE3 cameraExtrinsics() const { return windowed() ? estimator_->cameraExtrinsics() : T_b_c_; }
