@@ -184,5 +184,35 @@ TEST(LossMonitor, AnEstimateRunningAwayAtASteadySpeedIsLost) {
     for (const FrameRecord& x : none) EXPECT_EQ(x.status, TrackingStatus::kOk) << x.t_ns;
 }
 
+TEST(LossMonitor, AStepTheAccelerometerDoesNotExplainIsLostWithABoundThatGrowsWithTheInterval) {
+  // Frame 4 lands 0.3 m off and stays (in another basin): frame 4 lies 0.3 m
+  // from the accelerometer's prediction, and frame 5, predicted with the
+  // velocity that step implies, as far again; then the poses are consistent.
+  // The bound is 0.05 m + 1 m/s^2 * dt * (dt + dt0) / 2: 0.0525 m at 20 Hz,
+  // 0.69 m with 0.8 s between frames (K = 15), where 0.3 m is within it.
+  const auto run = [](std::int64_t period_ns, double disagreement_m) {
+    tracking::TrackingOptions o = lossOptions(10, 2.0, 3, 0.0);
+    o.lost_accel_disagreement_m = disagreement_m;
+    o.lost_accel_disagreement_mps2 = 1.0;
+    LossMonitor m(o);
+    std::vector<FrameRecord> r;
+    for (int k = 0; k <= 8; ++k) {
+      r.push_back(frame(k, true));
+      r.back().t_ns = 1000000000LL + k * period_ns;
+      r.back().accel_disagreement_m = k == 4 || k == 5 ? 0.3 : (k == 2 ? 0.0524 : 0.002);
+    }
+    for (FrameRecord& x : r) m.update(&x);
+    return r;
+  };
+  const std::vector<FrameRecord> r = run(50000000LL, 0.05);
+  for (int k = 0; k <= 8; ++k) {
+    EXPECT_EQ(r[k].status == TrackingStatus::kLost, k == 4 || k == 5) << k;
+    EXPECT_EQ(r[k].lost_since_ns >= 0, k == 4) << k;
+  }
+  EXPECT_EQ(r[4].lost_reason, "the pose lies 0.30 m from the accelerometer's prediction, over 0.05");
+  for (const auto& none : {run(50000000LL, 0.0), run(800000000LL, 0.05)})  // off, or frames 0.8 s apart
+    for (const FrameRecord& x : none) EXPECT_EQ(x.status, TrackingStatus::kOk) << x.t_ns;
+}
+
 }  // namespace
 }  // namespace edgevio::pipeline

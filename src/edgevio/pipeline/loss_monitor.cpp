@@ -1,11 +1,25 @@
 #include "edgevio/pipeline/loss_monitor.h"
 
 #include <algorithm>
+#include <limits>
 #include <string>
 
 #include "edgevio/common/format.h"
+#include "edgevio/common/time.h"
 
 namespace edgevio::pipeline {
+
+double LossMonitor::disagreementBound(std::int64_t t_ns) {
+  // The accelerometer's prediction spans the last two intervals; its tolerance grows with their reach.
+  double bound_m = std::numeric_limits<double>::infinity();
+  if (disagreement_m_ > 0 && t_before_ns_ >= 0) {
+    const double dt0 = toSeconds(t_prev_ns_ - t_before_ns_), dt1 = toSeconds(t_ns - t_prev_ns_);
+    bound_m = disagreement_m_ + 0.5 * disagreement_mps2_ * dt1 * (dt0 + dt1);
+  }
+  t_before_ns_ = t_prev_ns_;
+  t_prev_ns_ = t_ns;
+  return bound_m;
+}
 
 void LossMonitor::update(FrameRecord* r) {
   const bool failed = r->aligned && (!r->selfCheckPassed() || r->frozen_image);
@@ -15,7 +29,9 @@ void LossMonitor::update(FrameRecord* r) {
                             r->gyro_disagreement_deg > gyro_disagreement_deg_;
   // (NaN, before a second or third frame, compares false)
   const bool too_fast = speed_mps_ > 0 && r->implied_speed_mps > speed_mps_;
-  const bool implausible = (accel_mps2_ > 0 && r->implied_accel_mps2 > accel_mps2_) || too_fast;
+  const double disagreement_bound_m = disagreementBound(r->t_ns);
+  const bool unexplained = r->accel_disagreement_m > disagreement_bound_m;
+  const bool implausible = (accel_mps2_ > 0 && r->implied_accel_mps2 > accel_mps2_) || too_fast || unexplained;
   if (r->aligned) {
     recent_.push_back({r->t_ns, contradicted, failed && !carried});
     if (recent_.size() > static_cast<std::size_t>(lost_after_)) recent_.pop_front();
@@ -49,9 +65,11 @@ void LossMonitor::update(FrameRecord* r) {
     begin(Cause::kFailures, first_failure_ns_, std::to_string(failures_) + " consecutive self-check failures");
   } else if (lost_ == Cause::kNone && implausible) {
     begin(Cause::kImplausibleMotion, r->t_ns,
-          too_fast ? formatText("the pose's step implies a speed of %.0f m/s, over %.0f", r->implied_speed_mps, speed_mps_)
-                   : formatText("the pose's step implies an acceleration of %.0f m/s^2, over %.0f", r->implied_accel_mps2,
-                            accel_mps2_));
+          too_fast      ? formatText("the pose's step implies a speed of %.0f m/s, over %.0f", r->implied_speed_mps, speed_mps_)
+          : unexplained ? formatText("the pose lies %.2f m from the accelerometer's prediction, over %.2f",
+                                     r->accel_disagreement_m, disagreement_bound_m)
+                        : formatText("the pose's step implies an acceleration of %.0f m/s^2, over %.0f", r->implied_accel_mps2,
+                                     accel_mps2_));
   } else if (lost_ == Cause::kNone && gyro_contradictions_ > 0 && r->aligned && !recent_.empty() && suspect(recent_.back()) &&
              suspects >= gyro_contradictions_) {
     const auto first = std::find_if(recent_.begin(), recent_.end(), suspect);

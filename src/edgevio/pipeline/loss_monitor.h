@@ -23,8 +23,11 @@
 //    tracks; where it did, it counts as a self-check failure;
 //  - a pose whose step implies an acceleration beyond tracking.lost_accel_mps2
 //    or a speed beyond tracking.lost_speed_mps (the alignment went to another
-//    basin, or the estimate exploded or runs away); such a loss ends at a
-//    tracked frame with a plausible step again;
+//    basin, or the estimate exploded or runs away), or that lies further from
+//    the accelerometer's prediction than tracking.lost_accel_disagreement_m
+//    plus lost_accel_disagreement_mps2's reach (a smaller jump the other
+//    checks pass); such a loss ends at a tracked frame with a plausible step
+//    again;
 //  - a non-finite pose.
 #include <cstdint>
 #include <deque>
@@ -37,13 +40,15 @@ namespace edgevio::pipeline {
 class LossMonitor {
  public:
   /// The tracking.lost_* options; lost_gyro_contradictions or
-  /// lost_gyro_disagreement_deg 0: no gyroscope signal; lost_accel_mps2 or lost_speed_mps 0: no such signal.
+  /// lost_gyro_disagreement_deg 0: no gyroscope signal; lost_accel_mps2, lost_speed_mps or lost_accel_disagreement_m 0: no such signal.
   explicit LossMonitor(const tracking::TrackingOptions& o)
       : lost_after_(o.lost_after_failures),
         gyro_disagreement_deg_(o.lost_gyro_disagreement_deg),
         gyro_contradictions_(o.lost_gyro_contradictions),
         accel_mps2_(o.lost_accel_mps2),
-        speed_mps_(o.lost_speed_mps) {}
+        speed_mps_(o.lost_speed_mps),
+        disagreement_m_(o.lost_accel_disagreement_m),
+        disagreement_mps2_(o.lost_accel_disagreement_mps2) {}
 
   /// Sets r->status, and r->lost_since_ns and r->lost_reason where a loss begins.
   void update(FrameRecord* r);
@@ -57,10 +62,14 @@ class LossMonitor {
     bool contradicted, guessed;  ///< the gyroscope contradicted it; it failed and the IMU did not carry it
   };
 
+  /// The accelerometer disagreement a frame at t_ns may have; moves the frame times on.
+  double disagreementBound(std::int64_t t_ns);
+
   int lost_after_;
   double gyro_disagreement_deg_;
   int gyro_contradictions_;
-  double accel_mps2_, speed_mps_;
+  double accel_mps2_, speed_mps_, disagreement_m_, disagreement_mps2_;
+  std::int64_t t_prev_ns_ = -1, t_before_ns_ = -1;  ///< the previous two frames' times
   int failures_ = 0;  ///< consecutive self-check failures
   std::int64_t first_failure_ns_ = -1;
   /// The last lost_after_ aligned frames: their times, whether the gyroscope contradicted them and whether their pose is a guess.

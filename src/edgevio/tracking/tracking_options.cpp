@@ -50,6 +50,15 @@ EDGEVIO_OPTIONS_TABLE(TrackingOptions,
            "... or a step implying a speed beyond this (racing drones reach 40-50 m/s; an estimate running away at a steady "
            "speed has no large acceleration)",
            above(0).orOff()),
+    number("lost_accel_disagreement_m", &S::lost_accel_disagreement_m, 0.05, "m",
+           "a pose further than this (plus the next option's share) from where the accelerometer puts it, given the previous "
+           "two poses, is lost until a frame tracks with a plausible step: a jump to another basin that every other check "
+           "passes (edge noise moves a pose by millimetres; such jumps by 0.1-0.6 m)",
+           above(0).orOff()),
+    number("lost_accel_disagreement_mps2", &S::lost_accel_disagreement_mps2, 1.0, "m/s^2",
+           "... plus this acceleration's reach over the two intervals, a*dt*(dt+dt0)/2: the accelerometer's unknown bias and "
+           "a few degrees of attitude error, which matter when frames are far apart",
+           atLeast(0)),
     number("static_init_window_s", &S::static_init_window_s, 1.0, "s", "IMU window at the start used for static initialisation",
            above(0)),
     number("static_chunk_s", &S::static_chunk_s, 0.1, "s",

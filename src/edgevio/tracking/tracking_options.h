@@ -14,7 +14,7 @@ struct TrackingOptions {
   int lost_after_failures;
   double lost_gyro_disagreement_deg;
   int lost_gyro_contradictions;
-  double lost_accel_mps2, lost_speed_mps;
+  double lost_accel_mps2, lost_speed_mps, lost_accel_disagreement_m, lost_accel_disagreement_mps2;
   double static_init_window_s, static_chunk_s, static_accel_std_max, static_gyro_std_max;
 
   EDGEVIO_OPTIONS(TrackingOptions)
