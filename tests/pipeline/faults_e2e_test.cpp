@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "common/sim_fixture.h"
 #include "common/test_support.h"
@@ -61,10 +62,12 @@ TEST_P(Faults, EveryFrameIsAccountedForAndTheBlackoutIsALostInterval) {
   EXPECT_EQ(s.frames_to_process, d.frameCount());
   EXPECT_EQ(s.unaccountedFrames(), 0);
   TableReader frames(out.file("frames.csv"), TableReader::Separator::kComma, TableReader::Header::kColumnNames);
-  std::size_t rows = 0, lost_rows = 0;
+  std::size_t rows = 0, lost_rows = 0;  // lost before the timestamp jump
+  const double t_first_s = static_cast<double>(d.frameTime(0)) * 1e-9;
   while (frames.next()) {
     ++rows;
-    lost_rows += frames.field(frames.column("status")) == "lost";
+    const double t_s = static_cast<double>(std::stoll(frames.field(frames.column("timestamp_ns")))) * 1e-9 - t_first_s;
+    lost_rows += frames.field(frames.column("status")) == "lost" && t_s < 3.7;
   }
   EXPECT_EQ(rows, s.frames);
   for (const LostInterval& l : s.lost_intervals)
@@ -73,16 +76,29 @@ TEST_P(Faults, EveryFrameIsAccountedForAndTheBlackoutIsALostInterval) {
   // Its black frames repeat each other to the last pixel: the visual modes
   // are lost from the second; the IMU modes, which carry the pose through,
   // from the first, declared at the tenth failure. The visual modes lose
-  // the frozen images [1.5, 1.8) s too; nothing else is lost.
-  ASSERT_EQ(s.lost_intervals.size(), mode.imu ? 1u : 2u) << modeName(mode);
-  const LostInterval& l = s.lost_intervals[0];
+  // the frozen images [1.5, 1.8) s too. Nothing else is lost before the
+  // timestamp jump (3.7 s): at it the poses are stamped 60 ms late, and a
+  // visual mode may find them off the accelerometer's prediction (about
+  // 0.1 m at the figure8's speed) for a frame or two.
+  std::vector<LostInterval> before_jump;
+  for (const LostInterval& l : s.lost_intervals) {
+    if (l.start_s < 3.7) {
+      before_jump.push_back(l);
+    } else {
+      EXPECT_FALSE(mode.imu) << modeName(mode);
+      EXPECT_LE(l.end_s - l.start_s, 0.15) << modeName(mode);
+      EXPECT_NE(l.reason.find("accelerometer"), std::string::npos) << l.reason;
+    }
+  }
+  ASSERT_EQ(before_jump.size(), mode.imu ? 1u : 2u) << modeName(mode);
+  const LostInterval& l = before_jump[0];
   EXPECT_NEAR(l.start_s, mode.imu ? 0.6 : 0.65, 1e-6);
   EXPECT_GE(l.end_s, 1.2);
   EXPECT_LE(l.end_s, 1.3);
   EXPECT_FALSE(l.open);
   if (!mode.imu) {
-    EXPECT_NEAR(s.lost_intervals[1].start_s, 1.5, 1e-6);  // the first repeat
-    EXPECT_NEAR(s.lost_intervals[1].end_s, 1.85, 1e-6);   // the first new image
+    EXPECT_NEAR(before_jump[1].start_s, 1.5, 1e-6);  // the first repeat
+    EXPECT_NEAR(before_jump[1].end_s, 1.85, 1e-6);   // the first new image
   }
   // IMU modes: from the tenth failure (1.05 s) to the first frame after the
   // blackout (1.20 s), which fails too: its keyframe is the last black frame.
@@ -119,9 +135,20 @@ TEST(FrozenImages, AreALossInTheVisualModesAndTheGyroscopeSeesThem) {
       EXPECT_EQ(contradicted, 0);
     else
       EXPECT_GE(contradicted, 2);
-    ASSERT_EQ(s.lost_intervals.size(), 1u) << s.lossText();
+    // Edge-only may lose a few frames after it too: re-acquiring from the
+    // stalled pose, its steps there are off the accelerometer's prediction
+    // (0.12-0.16 m; its error grows 0.66 -> 0.75 m at 2.65 s).
+    ASSERT_GE(s.lost_intervals.size(), 1u) << s.lossText();
     EXPECT_NEAR(s.lost_intervals[0].start_s, 2.0, 1e-6);
     EXPECT_NEAR(s.lost_intervals[0].end_s, 2.5, 1e-6);
+    if (mode.imu) {
+      EXPECT_EQ(s.lost_intervals.size(), 1u) << s.lossText();
+    }
+    for (std::size_t i = 1; i < s.lost_intervals.size(); ++i) {
+      EXPECT_GE(s.lost_intervals[i].start_s, 2.5) << s.lossText();
+      EXPECT_LE(s.lost_intervals[i].end_s, 2.8) << s.lossText();
+      EXPECT_NE(s.lost_intervals[i].reason.find("accelerometer"), std::string::npos) << s.lossText();
+    }
   }
 }
 

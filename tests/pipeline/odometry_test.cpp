@@ -339,7 +339,7 @@ TEST(Odometry, AnAlignmentInAnotherBasinIsLostWhereTheAccelerometerDoesNotExplai
   // The aggressive scenario (up to 3 g) with 2 mm and 2 mrad link noise: the
   // accelerometer accounts for every step to the noise of a second
   // difference of three poses (sqrt(6) * 2 mm = 4.9 mm per axis; its norm
-  // over 60 frames stays within 5 of those, 25 mm, half the 0.05 m bound),
+  // over 60 frames stays within 5 of those, 25 mm, a quarter of the 0.1 m bound),
   // in the visual and the IMU modes alike, and nothing is lost.
   for (const Mode mode : {Mode{false, false}, Mode{true, false}}) {
     FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);

@@ -50,10 +50,10 @@ EDGEVIO_OPTIONS_TABLE(TrackingOptions,
            "... or a step implying a speed beyond this (racing drones reach 40-50 m/s; an estimate running away at a steady "
            "speed has no large acceleration)",
            above(0).orOff()),
-    number("lost_accel_disagreement_m", &S::lost_accel_disagreement_m, 0.05, "m",
+    number("lost_accel_disagreement_m", &S::lost_accel_disagreement_m, 0.1, "m",
            "a pose further than this (plus the next option's share) from where the accelerometer puts it, given the previous "
            "two poses, is lost until a frame tracks with a plausible step: a jump to another basin that every other check "
-           "passes (edge noise moves a pose by millimetres; such jumps by 0.1-0.6 m)",
+           "passes (0.1-0.6 m; edge noise moves a pose by millimetres, 2 ms of timestamp jitter in fast flight up to 0.1 m)",
            above(0).orOff()),
     number("lost_accel_disagreement_mps2", &S::lost_accel_disagreement_mps2, 1.0, "m/s^2",
            "... plus this acceleration's reach over the two intervals, a*dt*(dt+dt0)/2: the accelerometer's unknown bias and "
