@@ -31,6 +31,7 @@
 
 #include "edgevio/cli/commands.h"
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/yaml_file.h"
 #include "edgevio/config/config.h"
 #include "edgevio/eval/batch.h"
@@ -90,9 +91,8 @@ std::string renderCommand(const YAML::Node& s, const std::string& matrix_path, c
   if (s["imu"]) sim += " --imu " + quote(resolve(yamlString(s, "imu", matrix_path)));
   for (const char* key : {"start", "duration", "blur_ms"})
     if (s[key]) {
-      char value[32];
-      std::snprintf(value, sizeof value, "%.10g", yamlDouble(s, key, matrix_path));
-      sim += std::string(" --") + (std::string(key) == "blur_ms" ? "blur-ms" : key) + " " + value;
+      sim += std::string(" --") + (std::string(key) == "blur_ms" ? "blur-ms" : key) + " " +
+             formatText("%.10g", yamlDouble(s, key, matrix_path));
     }
   if (!seed.empty()) sim += " --seed " + seed;
   if (const YAML::Node faults = s["faults"]) {
@@ -217,10 +217,8 @@ std::vector<Job> planJobs(const Matrix& matrix, const std::string& out, const st
 std::string ateCell(const eval::RunEvaluation* r) {
   if (!r) return "-";
   if (!r->ok) return "**failed**";
-  char b[64];
-  if (r->lost_intervals > 0) std::snprintf(b, sizeof b, "%.3f (lost %.1f s)", r->result.ate_rmse_m, r->lost_s);
-  else std::snprintf(b, sizeof b, "%.3f", r->result.ate_rmse_m);
-  return b;
+  if (r->lost_intervals > 0) return formatText("%.3f (lost %.1f s)", r->result.ate_rmse_m, r->lost_s);
+  return formatText("%.3f", r->result.ate_rmse_m);
 }
 
 /// The run of a job among the evaluated runs (null when it left no folder).
@@ -291,15 +289,10 @@ void writeTimingTable(std::ostream& out, const std::vector<eval::RunEvaluation>&
       continue;
     }
     out << "| " << r.sequence << " | " << r.mode << (r.skip > 0 ? ", skip " + std::to_string(r.skip) : "") << " |";
-    char b[32];
-    for (const pipeline::ComponentTime& c : times) {
-      std::snprintf(b, sizeof b, "%.2f", c.mean_ms);
-      out << " " << (c.count > 0 ? b : "-") << " |";
-    }
-    std::snprintf(b, sizeof b, "%.1f", r.realtime_factor);
-    out << " " << b << " |";
-    std::snprintf(b, sizeof b, "%.1f / %.1f", r.latency_p50_ms, r.latency_p99_ms);
-    out << " " << (std::isfinite(r.latency_p50_ms) ? b : "-") << " |\n";
+    for (const pipeline::ComponentTime& c : times) out << " " << (c.count > 0 ? formatText("%.2f", c.mean_ms) : "-") << " |";
+    out << formatText(" %.1f |", r.realtime_factor);
+    out << " " << (std::isfinite(r.latency_p50_ms) ? formatText("%.1f / %.1f", r.latency_p50_ms, r.latency_p99_ms) : "-")
+        << " |\n";
   }
 }
 

@@ -1,7 +1,8 @@
 #include "edgevio/common/json.h"
 
 #include <cmath>
-#include <cstdio>
+
+#include "edgevio/common/format.h"
 
 namespace edgevio {
 
@@ -16,9 +17,7 @@ std::string JsonWriter::escape(const std::string& s) {
       case '\r': r += "\\r"; break;
       default:
         if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          r += buf;
+          r += formatText("\\u%04x", c);
         } else {
           r += static_cast<char>(c);
         }
@@ -83,9 +82,7 @@ JsonWriter& JsonWriter::value(double v) {
   if (!std::isfinite(v)) {
     out_ << "null";
   } else {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.10g", v);
-    out_ << buf;
+    out_ << formatText("%.10g", v);
   }
   return *this;
 }

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "edgevio/common/format.h"
 #include "edgevio/common/table_reader.h"
 
 namespace edgevio::options {
@@ -36,11 +37,7 @@ bool Range::contains(double v) const {
 }
 
 namespace {
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
+std::string num(double v) { return formatText("%g", v); }
 }  // namespace
 
 std::string Range::text() const {

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <ostream>
 #include <set>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/time.h"
 #include "edgevio/common/yaml_file.h"
 
@@ -111,9 +111,7 @@ RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOp
 
 std::string num(double v, int decimals) {
   if (!std::isfinite(v)) return "-";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
+  return formatText("%.*f", decimals, v);
 }
 
 std::string csvField(const std::string& s) {

@@ -1,8 +1,8 @@
 #include "edgevio/eval/report.h"
 
-#include <cstdio>
 #include <ostream>
 
+#include "edgevio/common/format.h"
 #include "edgevio/common/json.h"
 
 namespace edgevio::eval {
@@ -39,11 +39,8 @@ void writeJson(std::ostream& out, const EvalResult& r) {
 }
 
 void writeTable(std::ostream& out, const EvalResult& r) {
-  char buf[96];
   const auto row = [&](const std::string& name, double v, const char* unit) {
-    char line[160];
-    std::snprintf(line, sizeof line, "  %-34s %12.6f %s\n", name.c_str(), v, unit);
-    out << line;
+    out << formatText("  %-34s %12.6f %s\n", name.c_str(), v, unit);
   };
   out << "Trajectory evaluation (" << r.matched << " matched poses, " << alignmentName(r.alignment)
       << " alignment)\n";
@@ -55,13 +52,10 @@ void writeTable(std::ostream& out, const EvalResult& r) {
   row("ATE median", r.ate_median_m, "m");
   row("ATE max", r.ate_max_m, "m");
   for (const auto& e : r.rpe) {
-    std::snprintf(buf, sizeof buf, "RPE trans RMSE, %g m (%zu pairs)", e.delta_m, e.pairs);
-    row(buf, e.trans_rmse_m, "m");
-    std::snprintf(buf, sizeof buf, "RPE rot RMSE, %g m", e.delta_m);
-    row(buf, e.rot_rmse_deg, "deg");
+    row(formatText("RPE trans RMSE, %g m (%zu pairs)", e.delta_m, e.pairs), e.trans_rmse_m, "m");
+    row(formatText("RPE rot RMSE, %g m", e.delta_m), e.rot_rmse_deg, "deg");
   }
-  std::snprintf(buf, sizeof buf, "ARE rot (%zu segments)", r.are_segments);
-  row(buf, r.are_rot_deg_per_m, "deg/m");
+  row(formatText("ARE rot (%zu segments)", r.are_segments), r.are_rot_deg_per_m, "deg/m");
   row("ARE trans", r.are_trans_m_per_m, "m/m");
 }
 

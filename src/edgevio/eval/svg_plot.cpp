@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/time.h"
 
 namespace edgevio::eval {
@@ -16,11 +16,7 @@ namespace {
 constexpr const char* kGtColour = "#222222";
 constexpr const char* kEstColour = "#d9480f";
 
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  return buf;
-}
+std::string fmt(double v) { return formatText("%.2f", v); }
 
 
 /// A tick step of 1, 2 or 5 times a power of ten giving about `target` ticks.
@@ -34,10 +30,8 @@ double niceStep(double range, int target) {
 }
 
 std::string tickLabel(double v, double step) {
-  char buf[32];
   const int decimals = step >= 1.0 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
+  return formatText("%.*f", decimals, std::abs(v) < 1e-12 ? 0.0 : v);
 }
 
 /// A plotting panel mapping data coordinates to a pixel rectangle.
@@ -107,9 +101,8 @@ std::string svgPlot(const EvalResult& r, const std::string& title) {
   o << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' viewBox='0 0 " << W << " "
     << H << "' font-family='sans-serif' font-size='12'>\n";
   o << "<rect width='100%' height='100%' fill='#fafafa'/>\n";
-  char summary[256];
-  std::snprintf(summary, sizeof summary, "%zu matched poses, %s alignment, ATE RMSE %.4f m, length %.1f m", r.matched,
-                alignmentName(r.alignment).c_str(), r.ate_rmse_m, r.length_m);
+  const std::string summary = formatText("%zu matched poses, %s alignment, ATE RMSE %.4f m, length %.1f m", r.matched,
+                                         alignmentName(r.alignment).c_str(), r.ate_rmse_m, r.length_m);
   o << "<text x='20' y='26' font-size='16' font-weight='bold'>" << escapeXml(title) << "</text>\n";
   o << "<text x='20' y='46' fill='#444'>" << summary << "</text>\n";
 

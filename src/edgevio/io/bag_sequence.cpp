@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/time.h"
 #include "edgevio/io/calibration_io.h"
 #include "edgevio/io/euroc_dataset.h"
@@ -251,9 +252,8 @@ void BagSequence::checkImu(const DatasetOptions& options) {
   for (std::size_t k = 1; k < imu_.size(); ++k) {
     const std::int64_t dt = imu_[k].t_ns - imu_[k - 1].t_ns;
     if (dt <= gap_ns) continue;
-    char buf[96];
-    std::snprintf(buf, sizeof buf, ": IMU gap of %.3f s before t = %.3f s", toSeconds(dt), toSeconds(imu_[k].t_ns));
-    warnings_.push_back(path_ + ", topic " + topics_.imu + ", message " + std::to_string(k) + buf);
+    warnings_.push_back(path_ + ", topic " + topics_.imu + ", message " + std::to_string(k) +
+                        formatText(": IMU gap of %.3f s before t = %.3f s", toSeconds(dt), toSeconds(imu_[k].t_ns)));
   }
 }
 

@@ -3,10 +3,10 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/table_reader.h"
 #include "edgevio/common/time.h"
 #include "edgevio/imu/imu_glitches.h"
@@ -146,10 +146,8 @@ void prepareImuLog(std::vector<imu::ImuSample>* imu, const camera::StereoRig& ri
   for (imu::ImuSample& s : *imu) s.t_ns -= clock_offset_ns;
   const std::vector<std::size_t> replaced = imu::replaceGlitches(imu, options.imu_glitch_gyro_rad_s, options.imu_glitch_accel_mps2);
   if (replaced.empty()) return;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, ": %zu IMU reading(s) replaced as glitches, the first at t = %.3f s (dataset.imu_glitch_*)",
-                replaced.size(), toSeconds((*imu)[replaced.front()].t_ns));
-  warnings->push_back(where + buf);
+  warnings->push_back(where + formatText(": %zu IMU reading(s) replaced as glitches, the first at t = %.3f s (dataset.imu_glitch_*)",
+                                         replaced.size(), toSeconds((*imu)[replaced.front()].t_ns)));
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> pairStereo(const std::vector<std::int64_t>& left,

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/table_reader.h"
 #include "edgevio/common/time.h"
 
@@ -26,10 +27,8 @@ std::vector<imu::ImuSample> readImuCsv(const std::string& path, double gap_warni
         r.fail(std::string(dt == 0 ? "duplicate" : "decreasing") +
                " timestamp: IMU rows must be in strictly increasing time order");
       if (dt > gap_ns && warnings) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, ": IMU gap of %.3f s before t = %.3f s", toSeconds(dt),
-                      toSeconds(s.t_ns));
-        warnings->push_back(r.path() + ":" + std::to_string(r.line()) + buf);
+        warnings->push_back(r.path() + ":" + std::to_string(r.line()) +
+                            formatText(": IMU gap of %.3f s before t = %.3f s", toSeconds(dt), toSeconds(s.t_ns)));
       }
     }
     imu.push_back(s);

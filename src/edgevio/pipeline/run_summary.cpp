@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
+#include "edgevio/common/format.h"
 #include "edgevio/common/json.h"
 #include "edgevio/common/time.h"
 
@@ -25,18 +25,9 @@ void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns) {
   latencies_ms.push_back(r.latency_ms);
   if (r.calibration) calibration = r.calibration;
   const double t = toSeconds(r.t_ns - t0_ns);
-  const auto event = [&](const std::string& what) {
-    char at[64];
-    std::snprintf(at, sizeof at, "t = %.3f s: ", t);
-    events.push_back(at + what);
-  };
+  const auto event = [&](const std::string& what) { events.push_back(formatText("t = %.3f s: ", t) + what); };
   for (const std::string& e : r.events) event(e);
   const bool lost = r.status == TrackingStatus::kLost;
-  const auto secondsText = [](double s) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.2f s", s);
-    return std::string(b);
-  };
   if (lost && r.lost_since_ns >= 0) {
     lost_intervals.push_back({toSeconds(r.lost_since_ns - t0_ns), t, r.lost_reason, true});
     event("estimate lost (" + r.lost_reason + ")");
@@ -45,7 +36,7 @@ void RunSummary::count(const FrameRecord& r, std::int64_t t0_ns) {
     LostInterval& l = lost_intervals.back();
     l.end_s = t;
     l.open = lost;
-    if (!lost) event("tracking again after " + secondsText(l.end_s - l.start_s) + " lost");
+    if (!lost) event(formatText("tracking again after %.2f s lost", l.end_s - l.start_s));
   }
   trusted_frames += !lost;
 }
@@ -72,9 +63,7 @@ long long RunSummary::unaccountedFrames() const {
 
 std::string RunSummary::lossText() const {
   if (lost_intervals.empty()) return "";
-  char b[96];
-  std::snprintf(b, sizeof b, "lost %.2f s in %zu interval(s) (summary.json lost_intervals)", lostSeconds(), lost_intervals.size());
-  return b;
+  return formatText("lost %.2f s in %zu interval(s) (summary.json lost_intervals)", lostSeconds(), lost_intervals.size());
 }
 
 double nearestRankPercentile(std::vector<double> values, double p) {

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/time.h"
 #include "edgevio/sim/imu_synth.h"
 #include "edgevio/sim/random.h"
@@ -72,11 +72,9 @@ Fault parseFault(const std::string& spec) {
 }
 
 std::string faultSpec(const Fault& f) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "%s:at=%s,for=%s,every=%s,size=%s", options::nameOf(kFaultKindChoices, f.kind),
-                options::formatNumber(f.at_s).c_str(), options::formatNumber(f.for_s).c_str(),
-                options::formatNumber(f.every_s).c_str(), options::formatNumber(f.size).c_str());
-  return buf;
+  return formatText("%s:at=%s,for=%s,every=%s,size=%s", options::nameOf(kFaultKindChoices, f.kind),
+                    options::formatNumber(f.at_s).c_str(), options::formatNumber(f.for_s).c_str(),
+                    options::formatNumber(f.every_s).c_str(), options::formatNumber(f.size).c_str());
 }
 
 FaultInjector::FaultInjector(std::vector<Fault> faults, std::int64_t t0_ns, double frame_period_s, std::uint64_t seed)

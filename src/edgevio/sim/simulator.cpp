@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/time.h"
 #include "edgevio/io/bag_sequence.h"
 #include "edgevio/io/calibration_io.h"
@@ -30,11 +31,7 @@ using geometry::SE3;
 
 namespace {
 
-std::string seconds(std::int64_t t_ns) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", toSeconds(t_ns));
-  return buf;
-}
+std::string seconds(std::int64_t t_ns) { return formatText("%.3f", toSeconds(t_ns)); }
 
 /// Piecewise-constant light scale: sudden changes at random times.
 class LightingChanges {

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/format.h"
 #include "edgevio/common/time.h"
 
 namespace edgevio::sim {
@@ -182,11 +182,7 @@ int removePositionSteps(io::Trajectory& samples, double max_accel_mps2, double s
 
 SplineTrajectory fitSpline(const io::Trajectory& samples, std::int64_t begin_ns, std::int64_t end_ns,
                            double knot_dt_s, double max_gap_s, const std::string& source) {
-  const auto seconds = [](std::int64_t t) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3f", toSeconds(t));
-    return std::string(buf);
-  };
+  const auto seconds = [](std::int64_t t) { return formatText("%.3f", toSeconds(t)); };
   if (samples.size() < 2) throw InputError(source, 0, "trajectory has fewer than 2 poses");
   if (end_ns <= begin_ns) throw InputError(source, 0, "empty time span requested");
   if (begin_ns < samples.front().t_ns || end_ns > samples.back().t_ns)
