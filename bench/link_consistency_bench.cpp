@@ -12,13 +12,14 @@
 //    at the true states (velocity and biases from the ground truth) against
 //    its covariance at the calibration's densities: mean 9 over the motion
 //    block if consistent.
-// Usage: link_consistency_bench [--mode edge+imu] [--imu-truth FILE] DATASET...
+// Usage: link_consistency_bench [--mode edge+imu] [--skip K] [--imu-truth FILE] DATASET...
 // (renders with ground truth; --imu-truth: a ground truth with velocity and
 // bias columns for the IMU part, e.g. EuRoC's groundtruth.csv beside a render
 // that replays its IMU log). Prints one markdown row per dataset and a total.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -127,7 +128,7 @@ double consecutiveCorrelation(const std::vector<Link>& links, int k) {
   return sxx > 0 && syy > 0 ? sxy / std::sqrt(sxx * syy) : std::nan("");
 }
 
-void analyse(const std::string& dataset, pipeline::Mode mode, const std::string& imu_truth, Totals* totals) {
+void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const std::string& imu_truth, Totals* totals) {
   const io::Trajectory gt = io::readTrajectory(dataset + "/mav0/state_groundtruth_estimate0/data.csv");
   const io::Trajectory imu_gt = imu_truth.empty() ? gt : io::readTrajectory(imu_truth);
   const Config config;
@@ -156,7 +157,7 @@ void analyse(const std::string& dataset, pipeline::Mode mode, const std::string&
     links.push_back(l);
   };
   const std::string out = (std::filesystem::temp_directory_path() / "edgevio_link_consistency").string();
-  pipeline::RunRequest req(dataset, out, mode);
+  pipeline::RunRequest req(dataset, out, mode, skip);
   req.picture_stride = 0;
   pipeline::run(req, config, observer);
   std::filesystem::remove_all(out);
@@ -212,7 +213,12 @@ int main(int argc, char** argv) {
   pipeline::Mode mode{true, false};
   std::vector<std::string> datasets;
   std::string imu_truth;
+  int skip = 0;
   for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--skip") == 0 && i + 1 < argc) {
+      skip = std::max(0, std::atoi(argv[++i]));
+      continue;
+    }
     if (std::strcmp(argv[i], "--imu-truth") == 0 && i + 1 < argc) {
       imu_truth = argv[++i];
       continue;
@@ -229,19 +235,19 @@ int main(int argc, char** argv) {
     }
   }
   if (datasets.empty()) {
-    std::fprintf(stderr, "usage: %s [--mode edge+imu] [--imu-truth FILE] DATASET...\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [--mode edge+imu] [--skip K] [--imu-truth FILE] DATASET...\n", argv[0]);
     return 2;
   }
-  std::printf("mode %s; NEES against the alignment's covariance (JtWJ)^-1 (6 if consistent; the window uses it x "
+  std::printf("mode %s, skip %d; NEES against the alignment's covariance (JtWJ)^-1 (6 if consistent; the window uses it x "
               "estimator.visual_covariance_scale); RMS of e_k/sigma_k per component (1 if consistent); "
               "intraclass correlation by keyframe and correlation of consecutive links to one keyframe (0 if "
               "independent); IMU NEES of the motion block at the calibration's densities (9 if consistent). The median of a "
               "consistent NEES is 5.35 (6 dof) and 8.34 (9 dof)\n\n",
-              pipeline::modeName(mode).c_str());
+              pipeline::modeName(mode).c_str(), skip);
   std::printf("| dataset | links | NEES mean (median) | RMS e/sigma: tx ty tz | rx ry rz | ICC t, r | consecutive t, r | IMU NEES mean (median) |\n");
   std::printf("|---|---:|---:|---|---|---|---|---:|\n");
   Totals t;
-  for (const std::string& d : datasets) analyse(d, mode, imu_truth, &t);
+  for (const std::string& d : datasets) analyse(d, mode, skip, imu_truth, &t);
   const double m = static_cast<double>(std::max<std::size_t>(t.links, 1));
   std::printf("| all | %zu | %.1f | %.2f %.2f %.2f | %.2f %.2f %.2f | | | %.2f |\n", t.links, t.nees / m, std::sqrt(t.sum_sq[0] / m),
               std::sqrt(t.sum_sq[1] / m), std::sqrt(t.sum_sq[2] / m), std::sqrt(t.sum_sq[3] / m), std::sqrt(t.sum_sq[4] / m),
