@@ -216,7 +216,13 @@ int main(int argc, char** argv) {
   int skip = 0;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--skip") == 0 && i + 1 < argc) {
-      skip = std::max(0, std::atoi(argv[++i]));
+      char* end = nullptr;
+      const long k = std::strtol(argv[++i], &end, 10);
+      if (end == argv[i] || *end != '\0' || k < 0 || k > 1000) {
+        std::fprintf(stderr, "--skip: an integer from 0 to 1000, not '%s'\n", argv[i]);
+        return 2;
+      }
+      skip = static_cast<int>(k);
       continue;
     }
     if (std::strcmp(argv[i], "--imu-truth") == 0 && i + 1 < argc) {

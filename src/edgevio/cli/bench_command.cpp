@@ -20,7 +20,6 @@
 // by frame skip) that scripts/results.sh puts into the README.
 #include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>

@@ -1,7 +1,6 @@
 #include "edgevio/io/bag_sequence.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 
 #include "edgevio/common/error.h"
