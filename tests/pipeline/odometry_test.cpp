@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -42,6 +43,7 @@ class FakeTracker final : public tracking::Tracker {
   std::set<std::int64_t> failing;
   double sigma_t = 0.002, sigma_r = 0.002;
   mutable int keyframes_made = 0;
+  mutable std::vector<std::int64_t> made;  ///< the keyframes' times, in the order their data was made
   /// Per frame: the predicted camera position (in the estimate's world) and the prediction's bound on its error.
   mutable std::map<std::int64_t, std::pair<Vec3, std::optional<double>>> predictions;
 
@@ -50,6 +52,7 @@ class FakeTracker final : public tracking::Tracker {
     k->t_ns = frame.t_ns;
     k->depth.points.assign(1, std::vector<Eigen::Vector3f>(2000));
     ++keyframes_made;
+    made.push_back(frame.t_ns);
     return k;
   }
 
@@ -109,7 +112,8 @@ struct OdometryRun {
 
 /// Frames every 50 ms from 1 s (still) for `frames` frames, started at the true pose.
 OdometryRun runOdometry(Mode mode, const Config& config, FakeTracker& tracker, int frames,
-                const std::vector<imu::ImuSample>* imu_override = nullptr) {
+                const std::vector<imu::ImuSample>* imu_override = nullptr,
+                const std::function<void(const FrameRecord&)>& posed = {}) {
   const test::ImuScenario& sc = scenario();
   const std::vector<imu::ImuSample>& imu = imu_override ? *imu_override : sc.imu.samples;
   const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL;
@@ -123,7 +127,7 @@ OdometryRun runOdometry(Mode mode, const Config& config, FakeTracker& tracker, i
   for (int f = 0; f < frames; ++f) {
     tracking::PreparedFrame frame;
     frame.t_ns = t0 + f * kFrameNs;
-    run.records.push_back(odometry.process(std::move(frame)));
+    run.records.push_back(odometry.process(std::move(frame), posed));
     // The estimate starts at (0, yaw 0 of the static start): compare the motion since the start.
     const SE3 truth = SE3(init.R_w_b, Vec3::Zero()) * start.inverse() * sc.pose(frame.t_ns);
     run.max_position_error_m =
@@ -164,6 +168,48 @@ TEST(Odometry, FollowsTheTruthWithKeyframesAsReferences) {
   // As in VioEstimator.FollowsAggressiveMotionToTheAccuracyOfItsLinks: 33
   // keyframe hops of 2 mm chain to ~1.2 cm per axis; 5 cm is 3σ of the norm.
   EXPECT_LT(run.max_position_error_m, 0.05);
+}
+
+TEST(Odometry, AKeyframesPoseIsOutBeforeItsDepthAndLoopClosure) {
+  // The pose a consumer receives is the record's final one; a new keyframe's
+  // depth and loop closure are made after it (its links join the window
+  // with the next frame), but a promoted previous frame's depth before the
+  // frame is aligned to it.
+  FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);
+  const std::int64_t failing = scenario().spline.beginNs() + 1000000000LL + 23 * kFrameNs;
+  tracker.failing = {failing};
+  std::vector<FrameRecord> posed;
+  std::vector<std::size_t> made_at_pose;
+  const OdometryRun run = runOdometry(Mode{}, testConfig(), tracker, 60, nullptr, [&](const FrameRecord& r) {
+    posed.push_back(r);
+    made_at_pose.push_back(tracker.made.size());
+  });
+  ASSERT_EQ(posed.size(), run.records.size());
+  const auto madeAt = [&](std::int64_t t) {
+    return static_cast<std::size_t>(std::find(tracker.made.begin(), tracker.made.end(), t) - tracker.made.begin());
+  };
+  int keyframes = 0, loop_closures = 0, promotions = 0;
+  for (std::size_t i = 0; i < posed.size(); ++i) {
+    const FrameRecord& r = run.records[i];
+    EXPECT_EQ(posed[i].t_ns, r.t_ns);
+    EXPECT_TRUE(posed[i].T_w_b.matrix() == r.T_w_b.matrix()) << i;
+    EXPECT_EQ(posed[i].status, r.status) << i;
+    EXPECT_FALSE(posed[i].loop_closure_ran) << i;
+    loop_closures += r.loop_closure_ran;
+    if (r.keyframe != KeyframeReason::kNone) {
+      ++keyframes;
+      EXPECT_GE(madeAt(r.t_ns), made_at_pose[i]) << i;
+      EXPECT_LT(madeAt(r.t_ns), tracker.made.size()) << i;
+    }
+    if (r.t_ns == failing) {
+      ASSERT_TRUE(r.previous_promoted);
+      ++promotions;
+      EXPECT_LT(madeAt(r.reference_t_ns), made_at_pose[i]);
+    }
+  }
+  EXPECT_GT(keyframes, 3);
+  EXPECT_GT(loop_closures, 3);
+  EXPECT_EQ(promotions, 1);
 }
 
 TEST(Odometry, AFailedAlignmentMakesThePreviousFrameTheKeyframe) {

@@ -9,6 +9,10 @@ void KeyframeStore::add(std::shared_ptr<const tracking::KeyframeData> data, cons
   keyframes_[t] = Keyframe{std::move(data), T_w_b, in_window};
 }
 
+void KeyframeStore::setData(std::shared_ptr<const tracking::KeyframeData> data) {
+  if (const auto it = keyframes_.find(data->t_ns); it != keyframes_.end()) it->second.data = std::move(data);
+}
+
 const Keyframe* KeyframeStore::current() const { return keyframes_.empty() ? nullptr : &keyframes_.rbegin()->second; }
 
 std::optional<std::int64_t> KeyframeStore::currentTime() const {

@@ -22,8 +22,11 @@ struct Keyframe {
 
 class KeyframeStore {
  public:
-  /// Adds the newest keyframe, which becomes the current one.
+  /// Adds the newest keyframe, which becomes the current one. Its data may
+  /// hold only its time at first (the rest made later: setData).
   void add(std::shared_ptr<const tracking::KeyframeData> data, const geometry::SE3& T_w_b, bool in_window);
+  /// The whole data of the keyframe at data->t_ns, if it is still kept.
+  void setData(std::shared_ptr<const tracking::KeyframeData> data);
 
   /// The keyframe frames are tracked against; null before the first.
   const Keyframe* current() const;

@@ -40,7 +40,7 @@ Odometry::Odometry(Mode mode, const Config& config, const tracking::Tracker& tra
   if (mode.imu || mode.loop) estimator_.emplace(config.estimator, noise, T_b_c, mode.imu, init.gyro_bias);
 }
 
-FrameRecord Odometry::process(tracking::PreparedFrame frame) {
+FrameRecord Odometry::process(tracking::PreparedFrame frame, const std::function<void(const FrameRecord&)>& posed) {
   FrameRecord r;
   r.t_ns = frame.t_ns;
   r.canny_ms = frame.pyramid.canny_ms;
@@ -69,6 +69,8 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame) {
   T_w_b_before_last_ = T_w_b_last_;
   t_prev_ = r.t_ns;
   T_w_b_last_ = r.T_w_b;
+  if (posed) posed(r);
+  linkNewKeyframe(&r);
   return r;
 }
 
@@ -136,8 +138,8 @@ void Odometry::processInWindow(tracking::PreparedFrame frame, FrameRecord* r) {
                                  ? KeyframeReason::kLinkRejected
                                  : tracked.vote;
   decideKeyframe(std::move(frame), tracked.T_w_b, why, r);
-  if (keyframes_.currentTime() != keyframe_before) closeLoops(r);
-  if (tracked.vote != KeyframeReason::kNone && link_good) linkBack(tracked.T_w_b, r);
+  pending_.loops = keyframes_.currentTime() != keyframe_before;
+  if (tracked.vote != KeyframeReason::kNone && link_good) pending_.back_links_from = tracked.T_w_b;
   optimize(link_good, tracked.T_w_b, r);
   r->T_w_b = poseOf(estimator_->newest());
   if (mode_.imu) r->state = estimator_->newest();
@@ -211,6 +213,7 @@ Odometry::Tracked Odometry::track(const tracking::PreparedFrame& frame, const tr
   tracking::Prediction p = prediction;
   if (windowed() && estimator_->calibration()) p.T_b_c = cameraExtrinsics();
   const auto alignToCurrent = [&] {
+    makeKeyframeData(r);
     const Keyframe& k = *keyframes_.current();
     r->reference_t_ns = k.data->t_ns;
     r->reference_points = k.data->referencePoints();
@@ -254,17 +257,29 @@ void Odometry::decideKeyframe(tracking::PreparedFrame frame, const SE3& T_w_b, K
 }
 
 void Odometry::addKeyframe(tracking::PreparedFrame frame, const SE3& T_w_b, KeyframeReason why, FrameRecord* r) {
-  std::shared_ptr<const tracking::KeyframeData> data = tracker_.makeKeyframe(std::move(frame));
-  r->bm_ms += data->depth.bm_ms;
+  makeKeyframeData(r);
   ++r->keyframes_made;
-  if (data->t_ns == r->t_ns)
+  if (frame.t_ns == r->t_ns)
     r->keyframe = why;
   else
     r->previous_promoted = true;
-  if (data->right_image_unreadable) r->events.push_back("right image unreadable: keyframe without depth");
-  const bool in_window = windowed() && estimator_->stateAt(data->t_ns).has_value();
-  keyframes_.add(std::move(data), T_w_b, in_window);
+  // The window needs only its time; its depth (the right image decoded, block
+  // matching) is made when a frame is aligned to it or once the pose is out.
+  auto placeholder = std::make_shared<tracking::KeyframeData>();
+  placeholder->t_ns = frame.t_ns;
+  const bool in_window = windowed() && estimator_->stateAt(frame.t_ns).has_value();
+  keyframes_.add(std::move(placeholder), T_w_b, in_window);
+  unmade_keyframe_ = std::move(frame);
   previous_.reset();  // the keyframe is the previous frame now
+}
+
+void Odometry::makeKeyframeData(FrameRecord* r) {
+  if (!unmade_keyframe_) return;
+  std::shared_ptr<const tracking::KeyframeData> data = tracker_.makeKeyframe(std::move(*unmade_keyframe_));
+  unmade_keyframe_.reset();
+  r->bm_ms += data->depth.bm_ms;
+  if (data->right_image_unreadable) r->events.push_back("right image unreadable: keyframe without depth");
+  keyframes_.setData(std::move(data));
 }
 
 bool Odometry::promotePrevious(KeyframeReason why, FrameRecord* r) {
@@ -284,6 +299,7 @@ void Odometry::optimize(bool link_good, const SE3& restart_pose, FrameRecord* r)
     // The estimate blew up and the estimator restarted its window at this frame.
     r->restart = WindowRestart::kBlowUp;
     r->events.push_back("estimator reset: " + r->estimator.reset_reason);
+    pending_ = {};  // their keyframes are gone from the window
     keyframeForRestart(r->t_ns, r);
     return;
   }
@@ -292,7 +308,14 @@ void Odometry::optimize(bool link_good, const SE3& restart_pose, FrameRecord* r)
   const bool was_current = keyframes_.currentTime() == gone;
   keyframes_.leftWindow(gone);
   // Later links need a reference in the window.
-  if (was_current && promotePrevious(KeyframeReason::kKeyframeLeftWindow, r)) closeLoops(r);
+  if (was_current && promotePrevious(KeyframeReason::kKeyframeLeftWindow, r)) pending_.loops = true;
+}
+
+void Odometry::linkNewKeyframe(FrameRecord* r) {
+  makeKeyframeData(r);
+  if (pending_.loops) closeLoops(r);
+  if (pending_.back_links_from) linkBack(*pending_.back_links_from, r);
+  pending_ = {};
 }
 
 void Odometry::keyframeForRestart(std::int64_t t_ns, FrameRecord* r) {

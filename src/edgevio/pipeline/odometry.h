@@ -13,7 +13,10 @@
 //                  is the frame's pose.
 //   edge+imu+loop: the full system.
 // In the window's modes every new keyframe is also linked back into the
-// keyframes before it (loop/back_links.h).
+// keyframes before it (loop/back_links.h). A new keyframe's depth (block
+// matching), loop closure and back links are made once its pose is out (the
+// loop and back links enter the window with the next frame), so that a
+// keyframe's pose waits no longer than any other frame's.
 //
 // The keyframe policy (METHOD.md §3, §5): a frame becomes a keyframe when
 // tracking votes for it (its alignment failed, or edge counts, reference
@@ -24,6 +27,7 @@
 // frame is aligned again.
 #include <opencv2/core.hpp>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,7 +58,10 @@ class Odometry {
 
   /// The frame's pyramid must be built with the config's vision options
   /// (tracking::prepareFrame); a driver may do that on another thread.
-  FrameRecord process(tracking::PreparedFrame frame);
+  /// `posed` is called as soon as the record's pose and status are final,
+  /// before a new keyframe's depth, loop closure and back links (whose links
+  /// enter the window with the next frame): what a consumer of poses waits for.
+  FrameRecord process(tracking::PreparedFrame frame, const std::function<void(const FrameRecord&)>& posed = {});
 
  private:
   /// A frame tracked but not made a keyframe: it becomes the keyframe when
@@ -95,6 +102,10 @@ class Odometry {
   /// After the window (re)started at t_ns: that frame is its only keyframe.
   void keyframeForRestart(std::int64_t t_ns, FrameRecord* r);
 
+  /// A new keyframe's data (makeKeyframeData), loop closure and back links, after its pose is out.
+  void linkNewKeyframe(FrameRecord* r);
+  /// The newest keyframe's images and depth, if still to be made.
+  void makeKeyframeData(FrameRecord* r);
   void closeLoops(FrameRecord* r);
   void linkBack(const geometry::SE3& T_w_b, FrameRecord* r);
 
@@ -122,6 +133,13 @@ class Odometry {
   std::optional<estimator::VioEstimator> estimator_;  ///< the window's modes
   KeyframeStore keyframes_;
   std::optional<Previous> previous_;
+  /// The newest keyframe's frame until its data is made (makeKeyframeData).
+  std::optional<tracking::PreparedFrame> unmade_keyframe_;
+  /// What linkNewKeyframe owes the frame just solved.
+  struct PendingKeyframeLinks {
+    bool loops = false;                                   ///< loop closure of the current keyframe
+    std::optional<geometry::SE3> back_links_from;         ///< its back links, checked against its tracked pose
+  } pending_;
   geometry::SE3 T_w_b_last_, T_w_b_before_last_;  ///< the poses of the last two frames (at t_prev_, t_before_last_)
   std::int64_t t_first_ = -1, t_prev_ = -1, t_before_last_ = -1;
 };

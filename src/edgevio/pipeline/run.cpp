@@ -106,12 +106,14 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
       return;
     }
     const auto t_start = Clock::now();
-    FrameRecord r = odometry.process(std::move(item.frame));
-    const auto posed = Clock::now();
-    r.total_ms = item.load_ms + std::chrono::duration<double, std::milli>(posed - t_start).count();
-    r.latency_ms = std::chrono::duration<double, std::milli>(posed - item.released).count();
-    if (imu_rate && r.state)
-      imu_rate->publish(r.t_ns, *r.state, r.calibration ? toNanoseconds(r.calibration->time_offset_s) : 0);
+    double latency_ms = 0.0;
+    FrameRecord r = odometry.process(std::move(item.frame), [&](const FrameRecord& posed) {
+      latency_ms = std::chrono::duration<double, std::milli>(Clock::now() - item.released).count();
+      if (imu_rate && posed.state)
+        imu_rate->publish(posed.t_ns, *posed.state, posed.calibration ? toNanoseconds(posed.calibration->time_offset_s) : 0);
+    });
+    r.total_ms = item.load_ms + std::chrono::duration<double, std::milli>(Clock::now() - t_start).count();
+    r.latency_ms = latency_ms;
     deliver(r, keepsPicture(r, done - 1, req.picture_stride), t0, writer, s, observer);
     if (observer.progress) observer.progress(done + item.dropped_before, frames.size(), toSeconds(r.t_ns - t0));
   });
