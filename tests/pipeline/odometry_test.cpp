@@ -170,11 +170,11 @@ TEST(Odometry, FollowsTheTruthWithKeyframesAsReferences) {
   EXPECT_LT(run.max_position_error_m, 0.05);
 }
 
-TEST(Odometry, AKeyframesPoseIsOutBeforeItsDepthAndLoopClosure) {
-  // The pose a consumer receives is the record's final one; a new keyframe's
-  // depth and loop closure are made after it (its links join the window
-  // with the next frame), but a promoted previous frame's depth before the
-  // frame is aligned to it.
+TEST(Odometry, APoseIsOutBeforeMarginalisationAndItsKeyframesDepthAndLoopClosure) {
+  // The pose a consumer receives is the record's final one; marginalisation
+  // and a new keyframe's depth and loop closure come after it (its links
+  // join the window with the next frame), but a promoted previous frame's
+  // depth before the frame is aligned to it.
   FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);
   const std::int64_t failing = scenario().spline.beginNs() + 1000000000LL + 23 * kFrameNs;
   tracker.failing = {failing};
@@ -188,14 +188,16 @@ TEST(Odometry, AKeyframesPoseIsOutBeforeItsDepthAndLoopClosure) {
   const auto madeAt = [&](std::int64_t t) {
     return static_cast<std::size_t>(std::find(tracker.made.begin(), tracker.made.end(), t) - tracker.made.begin());
   };
-  int keyframes = 0, loop_closures = 0, promotions = 0;
+  int keyframes = 0, loop_closures = 0, promotions = 0, marginalized = 0;
   for (std::size_t i = 0; i < posed.size(); ++i) {
     const FrameRecord& r = run.records[i];
     EXPECT_EQ(posed[i].t_ns, r.t_ns);
     EXPECT_TRUE(posed[i].T_w_b.matrix() == r.T_w_b.matrix()) << i;
     EXPECT_EQ(posed[i].status, r.status) << i;
     EXPECT_FALSE(posed[i].loop_closure_ran) << i;
+    EXPECT_LT(posed[i].estimator.marginalized_t_ns, 0) << i;
     loop_closures += r.loop_closure_ran;
+    marginalized += r.estimator.marginalized_t_ns >= 0;
     if (r.keyframe != KeyframeReason::kNone) {
       ++keyframes;
       EXPECT_GE(madeAt(r.t_ns), made_at_pose[i]) << i;
@@ -210,6 +212,7 @@ TEST(Odometry, AKeyframesPoseIsOutBeforeItsDepthAndLoopClosure) {
   EXPECT_GT(keyframes, 3);
   EXPECT_GT(loop_closures, 3);
   EXPECT_EQ(promotions, 1);
+  EXPECT_GT(marginalized, 20);  // 60 frames through a window of 30
 }
 
 TEST(Odometry, AFailedAlignmentMakesThePreviousFrameTheKeyframe) {

@@ -187,6 +187,12 @@ std::size_t VioEstimator::marginalizationVictim(bool alignment_good, const Keyfr
 }
 
 EstimatorUpdate VioEstimator::optimize(bool alignment_good, const KeyframeQuery& keyframes, const SE3& restart_pose) {
+  EstimatorUpdate u = solveWindow(restart_pose);
+  if (u.reset_reason.empty()) marginalizeWhenFull(alignment_good, keyframes, &u);
+  return u;
+}
+
+EstimatorUpdate VioEstimator::solveWindow(const SE3& restart_pose) {
   EstimatorUpdate u;
   const auto t0 = std::chrono::steady_clock::now();
   // Re-integrate the links whose bias linearisation point is far from the
@@ -204,19 +210,18 @@ EstimatorUpdate VioEstimator::optimize(bool alignment_good, const KeyframeQuery&
   u.solve_ms = msSince(t0);
   u.reset_reason = checkHealth();
   if (u.reset_reason.empty() && !std::isfinite(s.final_cost)) u.reset_reason = "non-finite cost";
-  if (!u.reset_reason.empty()) {
-    restartAfterBlowUp(restart_pose);
-    return u;
-  }
-  if (window_.states.size() <= static_cast<std::size_t>(options_.window_size)) return u;
+  if (!u.reset_reason.empty()) restartAfterBlowUp(restart_pose);
+  return u;
+}
 
+void VioEstimator::marginalizeWhenFull(bool alignment_good, const KeyframeQuery& keyframes, EstimatorUpdate* u) {
+  if (window_.states.size() <= static_cast<std::size_t>(options_.window_size)) return;
   const auto t1 = std::chrono::steady_clock::now();
   const std::size_t victim = marginalizationVictim(alignment_good, keyframes);
-  u.marginalized = victim == 0 ? Marginalization::kBack : Marginalization::kFront;
-  u.marginalized_t_ns = window_.states[victim].t_ns;
+  u->marginalized = victim == 0 ? Marginalization::kBack : Marginalization::kFront;
+  u->marginalized_t_ns = window_.states[victim].t_ns;
   marginalize(&window_, victim, options_);
-  u.marginalize_ms = msSince(t1);
-  return u;
+  u->marginalize_ms = msSince(t1);
 }
 
 }  // namespace edgevio::estimator

@@ -122,6 +122,11 @@ class VioEstimator {
   /// the estimate blew up, the window restarts at the newest state, placed at
   /// `restart_pose`, with its implausible velocity and biases reset.
   EstimatorUpdate optimize(bool alignment_good, const KeyframeQuery& keyframes, const geometry::SE3& restart_pose);
+  /// optimize's two halves: the newest state is final after the first (a
+  /// driver hands its pose out before marginalising). Marginalise only after
+  /// a solve that did not restart the window.
+  EstimatorUpdate solveWindow(const geometry::SE3& restart_pose);
+  void marginalizeWhenFull(bool alignment_good, const KeyframeQuery& keyframes, EstimatorUpdate* u);
 
  private:
   std::optional<std::size_t> indexOf(std::int64_t t_ns) const;

@@ -70,7 +70,7 @@ FrameRecord Odometry::process(tracking::PreparedFrame frame, const std::function
   t_prev_ = r.t_ns;
   T_w_b_last_ = r.T_w_b;
   if (posed) posed(r);
-  linkNewKeyframe(&r);
+  finishFrame(&r);
   return r;
 }
 
@@ -138,9 +138,9 @@ void Odometry::processInWindow(tracking::PreparedFrame frame, FrameRecord* r) {
                                  ? KeyframeReason::kLinkRejected
                                  : tracked.vote;
   decideKeyframe(std::move(frame), tracked.T_w_b, why, r);
-  pending_.loops = keyframes_.currentTime() != keyframe_before;
-  if (tracked.vote != KeyframeReason::kNone && link_good) pending_.back_links_from = tracked.T_w_b;
-  optimize(link_good, tracked.T_w_b, r);
+  after_pose_.loops = keyframes_.currentTime() != keyframe_before;
+  if (tracked.vote != KeyframeReason::kNone && link_good) after_pose_.back_links_from = tracked.T_w_b;
+  solveWindow(link_good, tracked.T_w_b, r);
   r->T_w_b = poseOf(estimator_->newest());
   if (mode_.imu) r->state = estimator_->newest();
   r->calibration = estimator_->calibration();
@@ -290,32 +290,38 @@ bool Odometry::promotePrevious(KeyframeReason why, FrameRecord* r) {
   return true;
 }
 
-void Odometry::optimize(bool link_good, const SE3& restart_pose, FrameRecord* r) {
-  estimator::KeyframeQuery keyframes;
-  keyframes.current = keyframes_.currentTime();
-  keyframes.is_keyframe = [this](std::int64_t t) { return keyframes_.isKeyframe(t); };
-  r->estimator = estimator_->optimize(link_good, keyframes, restart_pose);
+void Odometry::solveWindow(bool link_good, const SE3& restart_pose, FrameRecord* r) {
+  r->estimator = estimator_->solveWindow(restart_pose);
   if (!r->estimator.reset_reason.empty()) {
     // The estimate blew up and the estimator restarted its window at this frame.
     r->restart = WindowRestart::kBlowUp;
     r->events.push_back("estimator reset: " + r->estimator.reset_reason);
-    pending_ = {};  // their keyframes are gone from the window
+    after_pose_ = {};  // the keyframes it owed links to are gone from the window
     keyframeForRestart(r->t_ns, r);
     return;
   }
+  after_pose_.marginalize_after_good_link = link_good;
+}
+
+void Odometry::marginalize(bool link_good, FrameRecord* r) {
+  estimator::KeyframeQuery keyframes;
+  keyframes.current = keyframes_.currentTime();
+  keyframes.is_keyframe = [this](std::int64_t t) { return keyframes_.isKeyframe(t); };
+  estimator_->marginalizeWhenFull(link_good, keyframes, &r->estimator);
   const std::int64_t gone = r->estimator.marginalized_t_ns;
   if (gone < 0) return;
   const bool was_current = keyframes_.currentTime() == gone;
   keyframes_.leftWindow(gone);
   // Later links need a reference in the window.
-  if (was_current && promotePrevious(KeyframeReason::kKeyframeLeftWindow, r)) pending_.loops = true;
+  if (was_current && promotePrevious(KeyframeReason::kKeyframeLeftWindow, r)) after_pose_.loops = true;
 }
 
-void Odometry::linkNewKeyframe(FrameRecord* r) {
+void Odometry::finishFrame(FrameRecord* r) {
+  if (after_pose_.marginalize_after_good_link) marginalize(*after_pose_.marginalize_after_good_link, r);
   makeKeyframeData(r);
-  if (pending_.loops) closeLoops(r);
-  if (pending_.back_links_from) linkBack(*pending_.back_links_from, r);
-  pending_ = {};
+  if (after_pose_.loops) closeLoops(r);
+  if (after_pose_.back_links_from) linkBack(*after_pose_.back_links_from, r);
+  after_pose_ = {};
 }
 
 void Odometry::keyframeForRestart(std::int64_t t_ns, FrameRecord* r) {

@@ -13,10 +13,10 @@
 //                  is the frame's pose.
 //   edge+imu+loop: the full system.
 // In the window's modes every new keyframe is also linked back into the
-// keyframes before it (loop/back_links.h). A new keyframe's depth (block
-// matching), loop closure and back links are made once its pose is out (the
-// loop and back links enter the window with the next frame), so that a
-// keyframe's pose waits no longer than any other frame's.
+// keyframes before it (loop/back_links.h). Marginalisation and a new
+// keyframe's depth (block matching), loop closure and back links run once
+// the frame's pose is out (the loop and back links enter the window with the
+// next frame), so that a pose waits for no work that does not change it.
 //
 // The keyframe policy (METHOD.md §3, §5): a frame becomes a keyframe when
 // tracking votes for it (its alignment failed, or edge counts, reference
@@ -59,8 +59,9 @@ class Odometry {
   /// The frame's pyramid must be built with the config's vision options
   /// (tracking::prepareFrame); a driver may do that on another thread.
   /// `posed` is called as soon as the record's pose and status are final,
-  /// before a new keyframe's depth, loop closure and back links (whose links
-  /// enter the window with the next frame): what a consumer of poses waits for.
+  /// before marginalisation and a new keyframe's depth, loop closure and
+  /// back links (whose links enter the window with the next frame): what a
+  /// consumer of poses waits for.
   FrameRecord process(tracking::PreparedFrame frame, const std::function<void(const FrameRecord&)>& posed = {});
 
  private:
@@ -97,13 +98,16 @@ class Odometry {
   void addKeyframe(tracking::PreparedFrame frame, const geometry::SE3& T_w_b, tracking::KeyframeReason why, FrameRecord* r);
   /// Makes the previous frame the keyframe; false when there is none.
   bool promotePrevious(tracking::KeyframeReason why, FrameRecord* r);
-  /// Solves and marginalises; handles the window's events (a restart, the keyframe leaving).
-  void optimize(bool link_good, const geometry::SE3& restart_pose, FrameRecord* r);
+  /// Solves the window (the newest state is the frame's pose); handles a restart.
+  void solveWindow(bool link_good, const geometry::SE3& restart_pose, FrameRecord* r);
+  /// Two-way marginalisation when the window is full; handles the keyframe leaving it.
+  void marginalize(bool link_good, FrameRecord* r);
   /// After the window (re)started at t_ns: that frame is its only keyframe.
   void keyframeForRestart(std::int64_t t_ns, FrameRecord* r);
 
-  /// A new keyframe's data (makeKeyframeData), loop closure and back links, after its pose is out.
-  void linkNewKeyframe(FrameRecord* r);
+  /// The frame's work after its pose is out: marginalisation, a new
+  /// keyframe's data (makeKeyframeData), loop closure and back links.
+  void finishFrame(FrameRecord* r);
   /// The newest keyframe's images and depth, if still to be made.
   void makeKeyframeData(FrameRecord* r);
   void closeLoops(FrameRecord* r);
@@ -135,11 +139,12 @@ class Odometry {
   std::optional<Previous> previous_;
   /// The newest keyframe's frame until its data is made (makeKeyframeData).
   std::optional<tracking::PreparedFrame> unmade_keyframe_;
-  /// What linkNewKeyframe owes the frame just solved.
-  struct PendingKeyframeLinks {
-    bool loops = false;                                   ///< loop closure of the current keyframe
-    std::optional<geometry::SE3> back_links_from;         ///< its back links, checked against its tracked pose
-  } pending_;
+  /// What finishFrame owes the frame just solved.
+  struct AfterPose {
+    std::optional<bool> marginalize_after_good_link;  ///< marginalise; the two-way rule's "was the frame's link good"
+    bool loops = false;                               ///< loop closure of the current keyframe
+    std::optional<geometry::SE3> back_links_from;     ///< its back links, checked against its tracked pose
+  } after_pose_;
   geometry::SE3 T_w_b_last_, T_w_b_before_last_;  ///< the poses of the last two frames (at t_prev_, t_before_last_)
   std::int64_t t_first_ = -1, t_prev_ = -1, t_before_last_ = -1;
 };
