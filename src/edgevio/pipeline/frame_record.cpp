@@ -132,8 +132,9 @@ constexpr FrameColumn kColumns[] = {
       {"total_ms", "ms", "the whole frame: decoding, rectification, pyramid, tracking, estimation",
        [](const R& r) { return real(r.total_ms); }, 3, false, {"total (incl. PNG decode, rectification)", "frame"}},
       {"latency_ms", "ms",
-       "from the frame's arrival to its pose: in --realtime runs arrival is the frame's timestamp on the run's clock; "
-       "offline, when the reader got to it (then it includes waiting in the full queues)",
+       "from the frame's arrival to its pose: in --realtime runs arrival is the frame's timestamp on the run's clock "
+       "(its image read from its file before then, as a camera hands over pixels); offline, when the reader had read "
+       "it (then it includes waiting in the full queues); rectification, pyramid, tracking and the solve count",
        [](const R& r) { return real(r.latency_ms); }, 3},
 };
 

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <exception>
+#include <optional>
 #include <thread>
 
 #include <pthread.h>
@@ -30,39 +31,57 @@ struct Loaded {
 /// enough that a real-time run drops rather than lags.
 constexpr std::size_t kQueueCapacity = 2;
 
-Loaded load(io::Sequence& sequence, std::size_t i, const camera::StereoRectifier& rect, Clock::time_point released) {
+/// A frame's left image as read from the sequence, and the time reading it took.
+struct Decoded {
+  std::optional<cv::Mat> left;  ///< nullopt: unreadable
+  double ms = 0.0;
+};
+
+Decoded decode(io::Sequence& sequence, std::size_t i) {
+  const auto t0 = Clock::now();
+  Decoded d;
+  d.left = sequence.leftImage(i);
+  d.ms = msSince(t0);
+  return d;
+}
+
+Loaded load(io::Sequence& sequence, std::size_t i, Decoded decoded, const camera::StereoRectifier& rect,
+            Clock::time_point released) {
   const auto t0 = Clock::now();
   Loaded item;
   item.t_ns = sequence.frameTime(i);
   item.released = released;
-  if (std::optional<cv::Mat> left = sequence.leftImage(i)) {
+  if (decoded.left) {
     item.readable = true;
     item.frame.t_ns = item.t_ns;
-    item.frame.left = rect.rectify(0, *left);
+    item.frame.left = rect.rectify(0, *decoded.left);
     // Decoded by the tracking thread if the frame becomes a keyframe.
     item.frame.right = tracking::LazyImage([&rect, raw = sequence.rightImageLoader(i)] {
       const cv::Mat image = raw();
       return image.empty() ? cv::Mat() : rect.rectify(1, image);
     });
   }
-  item.ms = msSince(t0);
+  item.ms = decoded.ms + msSince(t0);
   return item;
 }
 
 /// The driver thread's work: loads the frames in order until they end or
 /// the queue is closed (the consumer stopped). Real time: each frame is
-/// released at its timestamp and dropped when the queue is full; offline,
-/// released when the driver gets to it, and waits for room.
+/// released at its timestamp and dropped when the queue is full; its image
+/// is read from its file before then, as a camera hands over pixels at their
+/// timestamp (rectification and all after it count in the latency).
+/// Offline: released when the driver gets to it, and waits for room.
 void readFrames(io::Sequence& sequence, const std::vector<std::size_t>& frames, const camera::StereoRectifier& rect,
                 bool realtime, BoundedQueue<Loaded>& loaded, std::atomic<std::size_t>& dropped) {
   const auto start = Clock::now();
   for (const std::size_t i : frames) {
+    Decoded decoded = decode(sequence, i);
     Clock::time_point released = Clock::now();
     if (realtime) {
       released = start + std::chrono::nanoseconds(sequence.frameTime(i) - sequence.frameTime(frames.front()));
       if (loaded.closedBy(released)) return;
     }
-    Loaded item = load(sequence, i, rect, released);
+    Loaded item = load(sequence, i, std::move(decoded), rect, released);
     if (!realtime) {
       if (!loaded.push(std::move(item))) return;
     } else if (!loaded.tryPush(std::move(item))) {
