@@ -113,7 +113,7 @@ struct OdometryRun {
 /// Frames every 50 ms from 1 s (still) for `frames` frames, started at the true pose.
 OdometryRun runOdometry(Mode mode, const Config& config, FakeTracker& tracker, int frames,
                 const std::vector<imu::ImuSample>* imu_override = nullptr,
-                const std::function<void(const FrameRecord&)>& posed = {}) {
+                const std::function<void(const FrameRecord&)>& posed = {}, bool realtime = false) {
   const test::ImuScenario& sc = scenario();
   const std::vector<imu::ImuSample>& imu = imu_override ? *imu_override : sc.imu.samples;
   const std::int64_t t0 = sc.spline.beginNs() + 1000000000LL;
@@ -121,7 +121,7 @@ OdometryRun runOdometry(Mode mode, const Config& config, FakeTracker& tracker, i
   init.is_static = true;
   init.R_w_b = sc.pose(t0).so3();
   init.gyro_bias = sc.imu.b_g[static_cast<std::size_t>((t0 - sc.imu.samples.front().t_ns) / 5000000)];
-  Odometry odometry(mode, config, tracker, sc.rig.T_b_c[0], sc.rig.imu, imu, init);
+  Odometry odometry(mode, config, tracker, sc.rig.T_b_c[0], sc.rig.imu, imu, init, realtime);
   OdometryRun run;
   const SE3 start = sc.pose(t0);
   for (int f = 0; f < frames; ++f) {
@@ -170,49 +170,61 @@ TEST(Odometry, FollowsTheTruthWithKeyframesAsReferences) {
   EXPECT_LT(run.max_position_error_m, 0.05);
 }
 
-TEST(Odometry, APoseIsOutBeforeMarginalisationAndItsKeyframesDepthAndLoopClosure) {
-  // The pose a consumer receives is the record's final one; marginalisation
-  // and a new keyframe's depth and loop closure come after it (its links
-  // join the window with the next frame), but a promoted previous frame's
-  // depth before the frame is aligned to it.
-  FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);
-  const std::int64_t failing = scenario().spline.beginNs() + 1000000000LL + 23 * kFrameNs;
-  tracker.failing = {failing};
-  std::vector<FrameRecord> posed;
-  std::vector<std::size_t> made_at_pose;
-  const OdometryRun run = runOdometry(Mode{}, testConfig(), tracker, 60, nullptr, [&](const FrameRecord& r) {
-    posed.push_back(r);
-    made_at_pose.push_back(tracker.made.size());
-  });
-  ASSERT_EQ(posed.size(), run.records.size());
-  const auto madeAt = [&](std::int64_t t) {
-    return static_cast<std::size_t>(std::find(tracker.made.begin(), tracker.made.end(), t) - tracker.made.begin());
-  };
-  int keyframes = 0, loop_closures = 0, promotions = 0, marginalized = 0;
-  for (std::size_t i = 0; i < posed.size(); ++i) {
-    const FrameRecord& r = run.records[i];
-    EXPECT_EQ(posed[i].t_ns, r.t_ns);
-    EXPECT_TRUE(posed[i].T_w_b.matrix() == r.T_w_b.matrix()) << i;
-    EXPECT_EQ(posed[i].status, r.status) << i;
-    EXPECT_FALSE(posed[i].loop_closure_ran) << i;
-    EXPECT_LT(posed[i].estimator.marginalized_t_ns, 0) << i;
-    loop_closures += r.loop_closure_ran;
-    marginalized += r.estimator.marginalized_t_ns >= 0;
-    if (r.keyframe != KeyframeReason::kNone) {
-      ++keyframes;
-      EXPECT_GE(madeAt(r.t_ns), made_at_pose[i]) << i;
-      EXPECT_LT(madeAt(r.t_ns), tracker.made.size()) << i;
+TEST(Odometry, APoseIsOutBeforeMarginalisationAndItsKeyframesDepthAndInRealTimeItsLoopClosure) {
+  // The pose a consumer receives is the record's final one. Marginalisation
+  // and a new keyframe's depth come after it (but a promoted previous
+  // frame's depth before the frame is aligned to it); so does, in real time
+  // only, the keyframe's loop closure, whose links then join the next solve.
+  for (const bool realtime : {false, true}) {
+    SCOPED_TRACE(realtime ? "real time" : "offline");
+    FakeTracker tracker(scenario(), scenario().rig.T_b_c[0]);
+    const std::int64_t failing = scenario().spline.beginNs() + 1000000000LL + 23 * kFrameNs;
+    tracker.failing = {failing};
+    std::vector<FrameRecord> posed;
+    std::vector<std::size_t> made_at_pose;
+    const OdometryRun run = runOdometry(
+        Mode{}, testConfig(), tracker, 60, nullptr,
+        [&](const FrameRecord& r) {
+          posed.push_back(r);
+          made_at_pose.push_back(tracker.made.size());
+        },
+        realtime);
+    ASSERT_EQ(posed.size(), run.records.size());
+    const auto madeAt = [&](std::int64_t t) {
+      return static_cast<std::size_t>(std::find(tracker.made.begin(), tracker.made.end(), t) - tracker.made.begin());
+    };
+    int own_keyframes = 0, loop_closures_before_pose = 0, loop_closures = 0, promotions = 0, marginalized = 0;
+    for (std::size_t i = 0; i < posed.size(); ++i) {
+      const FrameRecord& r = run.records[i];
+      EXPECT_EQ(posed[i].t_ns, r.t_ns);
+      EXPECT_TRUE(posed[i].T_w_b.matrix() == r.T_w_b.matrix()) << i;
+      EXPECT_EQ(posed[i].status, r.status) << i;
+      EXPECT_LT(posed[i].estimator.marginalized_t_ns, 0) << i;
+      loop_closures_before_pose += posed[i].loop_closure_ran;
+      loop_closures += r.loop_closure_ran;
+      marginalized += r.estimator.marginalized_t_ns >= 0;
+      if (r.keyframe != KeyframeReason::kNone && !posed[i].loop_closure_ran) {
+        // Its data was not needed before the pose: it is made after it.
+        ++own_keyframes;
+        EXPECT_GE(madeAt(r.t_ns), made_at_pose[i]) << i;
+        EXPECT_LT(madeAt(r.t_ns), tracker.made.size()) << i;
+      }
+      if (r.t_ns == failing) {
+        ASSERT_TRUE(r.previous_promoted);
+        ++promotions;
+        EXPECT_LT(madeAt(r.reference_t_ns), made_at_pose[i]);
+      }
     }
-    if (r.t_ns == failing) {
-      ASSERT_TRUE(r.previous_promoted);
-      ++promotions;
-      EXPECT_LT(madeAt(r.reference_t_ns), made_at_pose[i]);
+    EXPECT_GT(loop_closures, 3);
+    if (realtime) {
+      EXPECT_EQ(loop_closures_before_pose, 0);
+      EXPECT_GT(own_keyframes, 3);
+    } else {
+      EXPECT_GT(loop_closures_before_pose, 3);
     }
+    EXPECT_EQ(promotions, 1);
+    EXPECT_GT(marginalized, 20);  // 60 frames through a window of 30
   }
-  EXPECT_GT(keyframes, 3);
-  EXPECT_GT(loop_closures, 3);
-  EXPECT_EQ(promotions, 1);
-  EXPECT_GT(marginalized, 20);  // 60 frames through a window of 30
 }
 
 TEST(Odometry, AFailedAlignmentMakesThePreviousFrameTheKeyframe) {

@@ -140,6 +140,10 @@ void Odometry::processInWindow(tracking::PreparedFrame frame, FrameRecord* r) {
   decideKeyframe(std::move(frame), tracked.T_w_b, why, r);
   after_pose_.loops = keyframes_.currentTime() != keyframe_before;
   if (tracked.vote != KeyframeReason::kNone && link_good) after_pose_.back_links_from = tracked.T_w_b;
+  // Offline, as METHOD.md has it: a new keyframe's loop and back links enter
+  // this frame's solve. In real time they follow the pose and join the next
+  // solve (docs/method-deviations.md).
+  if (!realtime_) linkNewKeyframe(r);
   solveWindow(link_good, tracked.T_w_b, r);
   r->T_w_b = poseOf(estimator_->newest());
   if (mode_.imu) r->state = estimator_->newest();
@@ -318,10 +322,16 @@ void Odometry::marginalize(bool link_good, FrameRecord* r) {
 
 void Odometry::finishFrame(FrameRecord* r) {
   if (after_pose_.marginalize_after_good_link) marginalize(*after_pose_.marginalize_after_good_link, r);
+  after_pose_.marginalize_after_good_link.reset();
+  linkNewKeyframe(r);
+}
+
+void Odometry::linkNewKeyframe(FrameRecord* r) {
   makeKeyframeData(r);
   if (after_pose_.loops) closeLoops(r);
   if (after_pose_.back_links_from) linkBack(*after_pose_.back_links_from, r);
-  after_pose_ = {};
+  after_pose_.loops = false;
+  after_pose_.back_links_from.reset();
 }
 
 void Odometry::keyframeForRestart(std::int64_t t_ns, FrameRecord* r) {

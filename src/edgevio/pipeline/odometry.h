@@ -14,9 +14,10 @@
 //   edge+imu+loop: the full system.
 // In the window's modes every new keyframe is also linked back into the
 // keyframes before it (loop/back_links.h). Marginalisation and a new
-// keyframe's depth (block matching), loop closure and back links run once
-// the frame's pose is out (the loop and back links enter the window with the
-// next frame), so that a pose waits for no work that does not change it.
+// keyframe's depth (block matching) run once the frame's pose is out; so do,
+// in real time only, its loop closure and back links, whose links then join
+// the next frame's solve instead of this one's: a pose waits for no work
+// that does not change it, and in real time for none that changes it little.
 //
 // The keyframe policy (METHOD.md §3, §5): a frame becomes a keyframe when
 // tracking votes for it (its alignment failed, or edge counts, reference
@@ -49,8 +50,9 @@ class Odometry {
   /// `tracker` and `imu` must outlive the object. T_b_c: body → the camera
   /// the tracker's links are measured in. `realtime`: loop closure's time
   /// budget (loop.realtime_max_ms) applies; offline only its attempt counts
-  /// bound the work, so that the result does not depend on the machine.
-  /// `pictures`: each record carries what its alignment picture is drawn
+  /// bound the work, so that the result does not depend on the machine. In
+  /// real time a new keyframe's loop closure and back links also wait until
+  /// its pose is out. `pictures`: each record carries what its alignment picture is drawn
   /// from (FrameRecord::picture).
   Odometry(Mode mode, const Config& config, const tracking::Tracker& tracker, const geometry::SE3& T_b_c,
            const imu::ImuNoise& noise, const std::vector<imu::ImuSample>& imu, const imu::StaticInit& init,
@@ -59,9 +61,9 @@ class Odometry {
   /// The frame's pyramid must be built with the config's vision options
   /// (tracking::prepareFrame); a driver may do that on another thread.
   /// `posed` is called as soon as the record's pose and status are final,
-  /// before marginalisation and a new keyframe's depth, loop closure and
-  /// back links (whose links enter the window with the next frame): what a
-  /// consumer of poses waits for.
+  /// before marginalisation and a new keyframe's depth (and in real time its
+  /// loop closure and back links, whose links enter the window with the
+  /// next frame): what a consumer of poses waits for.
   FrameRecord process(tracking::PreparedFrame frame, const std::function<void(const FrameRecord&)>& posed = {});
 
  private:
@@ -105,9 +107,11 @@ class Odometry {
   /// After the window (re)started at t_ns: that frame is its only keyframe.
   void keyframeForRestart(std::int64_t t_ns, FrameRecord* r);
 
-  /// The frame's work after its pose is out: marginalisation, a new
-  /// keyframe's data (makeKeyframeData), loop closure and back links.
+  /// The frame's work after its pose is out: marginalisation, then linkNewKeyframe.
   void finishFrame(FrameRecord* r);
+  /// The current keyframe's data (makeKeyframeData), and the loop closure
+  /// and back links owed to it.
+  void linkNewKeyframe(FrameRecord* r);
   /// The newest keyframe's images and depth, if still to be made.
   void makeKeyframeData(FrameRecord* r);
   void closeLoops(FrameRecord* r);
