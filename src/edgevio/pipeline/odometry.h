@@ -52,8 +52,8 @@ class Odometry {
   /// budget (loop.realtime_max_ms) applies; offline only its attempt counts
   /// bound the work, so that the result does not depend on the machine. In
   /// real time a new keyframe's loop closure and back links also wait until
-  /// its pose is out. `pictures`: each record carries what its alignment picture is drawn
-  /// from (FrameRecord::picture).
+  /// its pose is out. `pictures`: each record carries what its alignment
+  /// picture is drawn from (FrameRecord::picture).
   Odometry(Mode mode, const Config& config, const tracking::Tracker& tracker, const geometry::SE3& T_b_c,
            const imu::ImuNoise& noise, const std::vector<imu::ImuSample>& imu, const imu::StaticInit& init,
            bool realtime = false, bool pictures = false);
