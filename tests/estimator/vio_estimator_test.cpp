@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <vector>
 
 #include "common/imu_scenario.h"
 #include "edgevio/common/time.h"
@@ -46,6 +47,7 @@ struct RunStats {
   bool keyframes_survived = true;
   std::optional<CalibrationState> calibration;  ///< the window's estimate at the end
   SE3 T_b_c;                                    ///< body → camera as the estimator ended with it
+  std::vector<NavState> newest;                 ///< the newest state after each frame
 };
 
 /// A rig that is not what its calibration says.
@@ -58,8 +60,10 @@ struct Miscalibration {
 /// Drives the estimator like the pipeline: one state per 20 Hz frame, a
 /// tracking link from the current keyframe (a new one every 6 frames) with
 /// noise σ_t, σ_r, the keyframe pose kept by the estimator.
+/// `early_pose_iterations` > 0: each frame's update in optimize's parts, the
+/// first solveWindow running that many iterations (as a real-time driver does).
 RunStats drive(const Scenario& sc, double sigma_t, double sigma_r, int frames, const EstimatorOptions& o = testOptions(),
-               const Miscalibration& wrong = {}, std::uint64_t seed = 5) {
+               const Miscalibration& wrong = {}, std::uint64_t seed = 5, int early_pose_iterations = 0) {
   const std::int64_t dt = 50000000, t0 = sc.spline.beginNs() + 1000000000LL;
   const auto taken = [&](std::int64_t t) { return t + toNanoseconds(wrong.clock_offset_s); };
   VioEstimator est(o, sc.rig.imu, sc.rig.T_b_c[0] * SE3(wrong.rotation_error, wrong.translation_error), true);
@@ -88,7 +92,15 @@ RunStats drive(const Scenario& sc, double sigma_t, double sigma_r, int frames, c
       keyframes.insert(t);
       keyframe = t;
     }
-    const EstimatorUpdate u = est.optimize(true, keyframesOf(keyframes, keyframe), SE3());
+    EstimatorUpdate u;
+    if (early_pose_iterations == 0) {
+      u = est.optimize(true, keyframesOf(keyframes, keyframe), SE3());
+    } else {
+      u = est.solveWindow(SE3(), early_pose_iterations);
+      if (u.reset_reason.empty()) est.finishSolve(SE3(), &u);
+      if (u.reset_reason.empty()) est.marginalizeWhenFull(true, keyframesOf(keyframes, keyframe), &u);
+    }
+    st.newest.push_back(est.newest());
     st.front += u.marginalized == Marginalization::kFront;
     st.back += u.marginalized == Marginalization::kBack;
     st.resets += !u.reset_reason.empty();
@@ -132,6 +144,28 @@ TEST(VioEstimator, FollowsAggressiveMotionToTheAccuracyOfItsLinks) {
   EXPECT_GT(st.front, 0);
   EXPECT_GT(st.back, 0);
   EXPECT_TRUE(st.keyframes_survived);
+}
+
+TEST(VioEstimator, TheUpdateInPartsLeavesTheWindowAsOptimizeDoes) {
+  // A real-time driver hands the pose out after the first iterations and
+  // runs the rest and the marginalisation after it: the window must end
+  // each frame exactly where one optimize call leaves it.
+  const Scenario sc("aggressive");
+  EstimatorOptions o = testOptions();
+  o.max_iterations = 3;
+  const RunStats whole = drive(sc, 0.003, 0.003, 80, o);
+  for (const int early : {1, 2, 3}) {
+    const RunStats parts = drive(sc, 0.003, 0.003, 80, o, {}, 5, early);
+    ASSERT_EQ(parts.newest.size(), whole.newest.size());
+    for (std::size_t f = 0; f < whole.newest.size(); ++f) {
+      const NavState &a = whole.newest[f], &b = parts.newest[f];
+      ASSERT_TRUE(a.p_w == b.p_w && a.v_w == b.v_w && a.R_w_b.matrix() == b.R_w_b.matrix() && a.b_a == b.b_a && a.b_g == b.b_g)
+          << "first part of " << early << " iterations, frame " << f;
+    }
+    EXPECT_EQ(parts.front, whole.front);
+    EXPECT_EQ(parts.back, whole.back);
+  }
+  EXPECT_GT(whole.front + whole.back, 20);  // 80 frames through a window of 30
 }
 
 EstimatorOptions calibrating(bool time_offset, bool rotation, bool translation = false) {

@@ -5,7 +5,7 @@ namespace edgevio::estimator {
 
 /// The sliding-window estimator (config section `estimator`; METHOD.md §4, §5).
 struct EstimatorOptions {
-  int window_size, max_iterations;
+  int window_size, max_iterations, realtime_pose_iterations;
   double huber_translation_m, huber_rotation_deg, damping, external_check_rotation_deg, external_check_translation_m,
       loop_check_rotation_deg, loop_check_translation_m, front_translation_m, front_rotation_deg,
       visual_covariance_scale, imu_noise_inflation, gyro_bias_walk_inflation, accel_bias_walk_inflation, max_imu_gap_s,

@@ -339,13 +339,19 @@ SolveSummary solve(Window* w, const EstimatorOptions& o) {
       damping *= 1.0 / kGaugeStiffness;
     }
     const VectorXd step = perturbedCholeskySolve(n.H, -n.g, damping);
-    if (!step.allFinite()) break;
+    if (!step.allFinite()) {
+      s.stopped = true;
+      break;
+    }
     const NavState oldest = w->states.front().x;
     for (std::size_t k = 0; k < N; ++k) w->states[k].x = boxplus(w->states[k].x, step.segment<15>(15 * static_cast<long>(k)));
     if (w->calibration) w->calibration = boxplus(*w->calibration, step.tail<15>());
     if (w->gauge != Gauge::kNone && !o.gauge_prior) reanchor(oldest, w);
     ++s.iterations;
-    if (step.norm() < kNegligibleStep) break;
+    if (step.norm() < kNegligibleStep) {
+      s.stopped = true;
+      break;
+    }
   }
   s.final_cost = windowCost(*w, o);
   return s;

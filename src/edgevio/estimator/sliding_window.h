@@ -107,6 +107,7 @@ struct SolveSummary {
   /// ½ Σ rᵀWr over the links plus the prior's ½δᵀHδ + bᵀδ (no constant term:
   /// negative values are normal; only differences within one solve mean anything).
   double initial_cost = 0.0, final_cost = 0.0;
+  bool stopped = false;  ///< the last step vanished or was not finite: more iterations would not move the window
 };
 
 /// The state plus/minus operations of the 15-dimensional error.

@@ -1,5 +1,6 @@
 #include "edgevio/estimator/vio_estimator.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -187,31 +188,50 @@ std::size_t VioEstimator::marginalizationVictim(bool alignment_good, const Keyfr
 }
 
 EstimatorUpdate VioEstimator::optimize(bool alignment_good, const KeyframeQuery& keyframes, const SE3& restart_pose) {
-  EstimatorUpdate u = solveWindow(restart_pose);
+  EstimatorUpdate u = solveWindow(restart_pose, options_.max_iterations);
   if (u.reset_reason.empty()) marginalizeWhenFull(alignment_good, keyframes, &u);
   return u;
 }
 
-EstimatorUpdate VioEstimator::solveWindow(const SE3& restart_pose) {
-  EstimatorUpdate u;
-  const auto t0 = std::chrono::steady_clock::now();
+EstimatorUpdate VioEstimator::solveWindow(const SE3& restart_pose, int iterations) {
   // Re-integrate the links whose bias linearisation point is far from the
   // estimate (METHOD.md §4); first-order correction covers the rest.
+  const auto t0 = std::chrono::steady_clock::now();
   for (InertialLink& l : window_.inertial) {
     const imu::NavState& xi = window_.states[l.i].x;
     if ((xi.b_a - l.pre.linearizationBa()).norm() > options_.repropagate_accel_bias ||
         (xi.b_g - l.pre.linearizationBg()).norm() > options_.repropagate_gyro_bias)
       l.repropagate(xi.b_a, xi.b_g);
   }
-  const SolveSummary s = solve(&window_, options_);
-  u.iterations = s.iterations;
-  u.initial_cost = s.initial_cost;
-  u.final_cost = s.final_cost;
+  EstimatorUpdate u;
   u.solve_ms = msSince(t0);
-  u.reset_reason = checkHealth();
-  if (u.reset_reason.empty() && !std::isfinite(s.final_cost)) u.reset_reason = "non-finite cost";
-  if (!u.reset_reason.empty()) restartAfterBlowUp(restart_pose);
+  iterations_left_ = options_.max_iterations;
+  iterate(std::min(iterations, options_.max_iterations), restart_pose, &u);
+  u.initial_cost = first_cost_;
   return u;
+}
+
+void VioEstimator::finishSolve(const SE3& restart_pose, EstimatorUpdate* u) {
+  if (iterations_left_ > 0) iterate(iterations_left_, restart_pose, u);
+}
+
+void VioEstimator::iterate(int iterations, const SE3& restart_pose, EstimatorUpdate* u) {
+  const auto t0 = std::chrono::steady_clock::now();
+  EstimatorOptions o = options_;
+  o.max_iterations = iterations;
+  const SolveSummary s = solve(&window_, o);
+  if (iterations_left_ == options_.max_iterations) first_cost_ = s.initial_cost;
+  // A step that vanished or failed ends the frame's solve, as it would have in one call.
+  iterations_left_ = s.stopped ? 0 : iterations_left_ - iterations;
+  u->iterations += s.iterations;
+  u->final_cost = s.final_cost;
+  u->reset_reason = checkHealth();
+  if (u->reset_reason.empty() && !std::isfinite(s.final_cost)) u->reset_reason = "non-finite cost";
+  if (!u->reset_reason.empty()) {
+    restartAfterBlowUp(restart_pose);
+    iterations_left_ = 0;
+  }
+  u->solve_ms += msSince(t0);
 }
 
 void VioEstimator::marginalizeWhenFull(bool alignment_good, const KeyframeQuery& keyframes, EstimatorUpdate* u) {

@@ -122,15 +122,21 @@ class VioEstimator {
   /// the estimate blew up, the window restarts at the newest state, placed at
   /// `restart_pose`, with its implausible velocity and biases reset.
   EstimatorUpdate optimize(bool alignment_good, const KeyframeQuery& keyframes, const geometry::SE3& restart_pose);
-  /// optimize's two halves: the newest state is final after the first (a
-  /// driver hands its pose out before marginalising). Marginalise only after
-  /// a solve that did not restart the window.
-  EstimatorUpdate solveWindow(const geometry::SE3& restart_pose);
+  /// optimize in parts, so that a driver can hand the frame's pose out
+  /// early: solveWindow runs the first `iterations` of max_iterations
+  /// Gauss-Newton iterations (or restarts the window as optimize does),
+  /// finishSolve the rest, marginalizeWhenFull the marginalisation (only
+  /// after a solve that did not restart the window). The three in a row,
+  /// with any `iterations`, leave the window as optimize does.
+  EstimatorUpdate solveWindow(const geometry::SE3& restart_pose, int iterations);
+  void finishSolve(const geometry::SE3& restart_pose, EstimatorUpdate* u);
   void marginalizeWhenFull(bool alignment_good, const KeyframeQuery& keyframes, EstimatorUpdate* u);
 
  private:
   std::optional<std::size_t> indexOf(std::int64_t t_ns) const;
   std::string checkHealth() const;
+  /// Up to `iterations` Gauss-Newton iterations of the frame's solve, then the health check.
+  void iterate(int iterations, const geometry::SE3& restart_pose, EstimatorUpdate* u);
   void restartAfterBlowUp(const geometry::SE3& pose);
   bool addVisualLink(std::size_t r, std::size_t n, const geometry::SE3& T_nr, const Mat6& covariance);
   /// The state two-way marginalisation removes (METHOD.md §5).
@@ -142,6 +148,8 @@ class VioEstimator {
   Vec3 start_gyro_bias_;
   Window window_;
   imu::NavState predicted_newest_;  ///< IMU prediction of the newest state, for the external check
+  int iterations_left_ = 0;         ///< Gauss-Newton iterations of the frame's solve still to run (finishSolve)
+  double first_cost_ = 0.0;         ///< the cost before the frame's first iteration
 };
 
 }  // namespace edgevio::estimator

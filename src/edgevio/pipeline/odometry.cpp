@@ -295,16 +295,21 @@ bool Odometry::promotePrevious(KeyframeReason why, FrameRecord* r) {
 }
 
 void Odometry::solveWindow(bool link_good, const SE3& restart_pose, FrameRecord* r) {
-  r->estimator = estimator_->solveWindow(restart_pose);
-  if (!r->estimator.reset_reason.empty()) {
-    // The estimate blew up and the estimator restarted its window at this frame.
-    r->restart = WindowRestart::kBlowUp;
-    r->events.push_back("estimator reset: " + r->estimator.reset_reason);
-    after_pose_ = {};  // the keyframes it owed links to are gone from the window
-    keyframeForRestart(r->t_ns, r);
-    return;
-  }
+  const estimator::EstimatorOptions& o = config_.estimator;
+  r->estimator = estimator_->solveWindow(restart_pose, realtime_ ? o.realtime_pose_iterations : o.max_iterations);
+  if (restartedAfterBlowUp(r)) return;
+  after_pose_.finish_solve_restarting_at = restart_pose;
   after_pose_.marginalize_after_good_link = link_good;
+}
+
+bool Odometry::restartedAfterBlowUp(FrameRecord* r) {
+  if (r->estimator.reset_reason.empty()) return false;
+  // The estimate blew up and the estimator restarted its window at this frame.
+  r->restart = WindowRestart::kBlowUp;
+  r->events.push_back("estimator reset: " + r->estimator.reset_reason);
+  after_pose_ = {};  // the keyframes it owed links to are gone from the window
+  keyframeForRestart(r->t_ns, r);
+  return true;
 }
 
 void Odometry::marginalize(bool link_good, FrameRecord* r) {
@@ -321,7 +326,12 @@ void Odometry::marginalize(bool link_good, FrameRecord* r) {
 }
 
 void Odometry::finishFrame(FrameRecord* r) {
+  if (after_pose_.finish_solve_restarting_at) {
+    estimator_->finishSolve(*after_pose_.finish_solve_restarting_at, &r->estimator);
+    if (restartedAfterBlowUp(r)) return;
+  }
   if (after_pose_.marginalize_after_good_link) marginalize(*after_pose_.marginalize_after_good_link, r);
+  after_pose_.finish_solve_restarting_at.reset();
   after_pose_.marginalize_after_good_link.reset();
   linkNewKeyframe(r);
 }

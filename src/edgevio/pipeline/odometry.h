@@ -15,9 +15,11 @@
 // In the window's modes every new keyframe is also linked back into the
 // keyframes before it (loop/back_links.h). Marginalisation and a new
 // keyframe's depth (block matching) run once the frame's pose is out; so do,
-// in real time only, its loop closure and back links, whose links then join
-// the next frame's solve instead of this one's: a pose waits for no work
-// that does not change it, and in real time for none that changes it little.
+// in real time only, the solve's later Gauss-Newton iterations
+// (estimator.realtime_pose_iterations) and the keyframe's loop closure and
+// back links, whose links then join the next frame's solve instead of this
+// one's: a pose waits for no work that does not change it, and in real time
+// for none that changes it little.
 //
 // The keyframe policy (METHOD.md §3, §5): a frame becomes a keyframe when
 // tracking votes for it (its alignment failed, or edge counts, reference
@@ -100,14 +102,18 @@ class Odometry {
   void addKeyframe(tracking::PreparedFrame frame, const geometry::SE3& T_w_b, tracking::KeyframeReason why, FrameRecord* r);
   /// Makes the previous frame the keyframe; false when there is none.
   bool promotePrevious(tracking::KeyframeReason why, FrameRecord* r);
-  /// Solves the window (the newest state is the frame's pose); handles a restart.
+  /// Solves the window (the newest state is the frame's pose; in real time
+  /// after estimator.realtime_pose_iterations); handles a restart.
   void solveWindow(bool link_good, const geometry::SE3& restart_pose, FrameRecord* r);
+  /// When the estimate blew up (r->estimator says why): the window restarted at this frame.
+  bool restartedAfterBlowUp(FrameRecord* r);
   /// Two-way marginalisation when the window is full; handles the keyframe leaving it.
   void marginalize(bool link_good, FrameRecord* r);
   /// After the window (re)started at t_ns: that frame is its only keyframe.
   void keyframeForRestart(std::int64_t t_ns, FrameRecord* r);
 
-  /// The frame's work after its pose is out: marginalisation, then linkNewKeyframe.
+  /// The frame's work after its pose is out: the solve's remaining
+  /// iterations, marginalisation, then linkNewKeyframe.
   void finishFrame(FrameRecord* r);
   /// The current keyframe's data (makeKeyframeData), and the loop closure
   /// and back links owed to it.
@@ -145,6 +151,7 @@ class Odometry {
   std::optional<tracking::PreparedFrame> unmade_keyframe_;
   /// What finishFrame owes the frame just solved.
   struct AfterPose {
+    std::optional<geometry::SE3> finish_solve_restarting_at;  ///< the solve's remaining iterations; where a blow-up restarts
     std::optional<bool> marginalize_after_good_link;  ///< marginalise; the two-way rule's "was the frame's link good"
     bool loops = false;                               ///< loop closure of the current keyframe
     std::optional<geometry::SE3> back_links_from;     ///< its back links, checked against its tracked pose
