@@ -127,7 +127,9 @@ class VioEstimator {
   /// Gauss-Newton iterations (or restarts the window as optimize does),
   /// finishSolve the rest, marginalizeWhenFull the marginalisation (only
   /// after a solve that did not restart the window). The three in a row,
-  /// with any `iterations`, leave the window as optimize does.
+  /// with any `iterations`, leave the window as optimize does, unless the
+  /// estimate fails the health check after the first part only (it then
+  /// restarts there, before the pose is handed out).
   EstimatorUpdate solveWindow(const geometry::SE3& restart_pose, int iterations);
   void finishSolve(const geometry::SE3& restart_pose, EstimatorUpdate* u);
   void marginalizeWhenFull(bool alignment_good, const KeyframeQuery& keyframes, EstimatorUpdate* u);

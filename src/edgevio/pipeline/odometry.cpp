@@ -328,7 +328,7 @@ void Odometry::marginalize(bool link_good, FrameRecord* r) {
 void Odometry::finishFrame(FrameRecord* r) {
   if (after_pose_.finish_solve_restarting_at) {
     estimator_->finishSolve(*after_pose_.finish_solve_restarting_at, &r->estimator);
-    if (restartedAfterBlowUp(r)) return;
+    restartedAfterBlowUp(r);  // then nothing else is owed but the keyframe's data
   }
   if (after_pose_.marginalize_after_good_link) marginalize(*after_pose_.marginalize_after_good_link, r);
   after_pose_.finish_solve_restarting_at.reset();
