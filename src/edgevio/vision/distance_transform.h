@@ -33,7 +33,7 @@ class DistanceTransform {
   float value(double u, double v) const;
   void valueAndGradient(double u, double v, float* value, float* du, float* dv) const;
   const cv::Mat& distance() const { return dist_; }
-  bool hasLines() const { return !nearest_pixel_.empty(); }
+  bool hasLines() const { return !nearest_line_.empty(); }
   /// Time spent building the lines [ms].
   double linesMs() const { return lines_ms_; }
   /// Nearest edge of pixel (round(u), round(v)) as a sub-pixel point and unit normal.
@@ -42,8 +42,7 @@ class DistanceTransform {
  private:
   void buildLines(const cv::Mat& edges, const cv::Mat& image, cv::Mat&& nearest_pixel);
   cv::Mat dist_;               // CV_32FC1
-  cv::Mat nearest_pixel_;              // CV_32SC1: v·W + u of the nearest edge pixel, −1 without edges
-  std::vector<int> line_of_pixel_;     // v·W + u → index into lines_ (edge pixels only)
+  cv::Mat nearest_line_;                // CV_32SC1: index into lines_ of the nearest edge pixel, −1 without edges
   std::vector<Eigen::Vector4f> lines_;  // (x, y, nx, ny) per edge pixel
   double lines_ms_ = 0.0;
 };
@@ -51,10 +50,9 @@ class DistanceTransform {
 // Defined here: the alignment calls them for every point of every iteration.
 
 inline void DistanceTransform::nearestLine(double u, double v, Vec2* point, Vec2* normal) const {
-  const int x = std::clamp(static_cast<int>(u + 0.5), 0, nearest_pixel_.cols - 1);
-  const int y = std::clamp(static_cast<int>(v + 0.5), 0, nearest_pixel_.rows - 1);
-  const int pixel = nearest_pixel_.at<int>(y, x);
-  const int i = pixel < 0 ? -1 : line_of_pixel_[static_cast<std::size_t>(pixel)];
+  const int x = std::clamp(static_cast<int>(u + 0.5), 0, nearest_line_.cols - 1);
+  const int y = std::clamp(static_cast<int>(v + 0.5), 0, nearest_line_.rows - 1);
+  const int i = nearest_line_.at<int>(y, x);
   if (i < 0) {  // no edge at all in the image
     *point = Vec2(u, v);
     *normal = Vec2(1.0, 0.0);
