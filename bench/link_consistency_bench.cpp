@@ -11,11 +11,15 @@
 //  - the IMU preintegration between consecutive frames: the residual of eq 17
 //    at the true states (velocity and biases from the ground truth) against
 //    its covariance at the calibration's densities: mean 9 over the motion
-//    block if consistent.
+//    block if consistent;
+//  - where the links' error comes from (a second table): the NEES by the
+//    time from the keyframe, of the difference of consecutive links to one
+//    keyframe, and the part of the translation error that is a scale error.
 // Usage: link_consistency_bench [--mode edge+imu] [--skip K] [--imu-truth FILE] DATASET...
 // (renders with ground truth; --imu-truth: a ground truth with velocity and
 // bias columns for the IMU part, e.g. EuRoC's groundtruth.csv beside a render
-// that replays its IMU log). Prints one markdown row per dataset and a total.
+// that replays its IMU log). Prints one markdown row per dataset and a total,
+// then the second table.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -43,6 +47,9 @@ struct Link {
   std::int64_t t_ns, t_ref_ns;
   Vec6 normalised;  ///< e_k/σ_k per component: unit variance when consistent
   double nees;      ///< eᵀΣ⁻¹e
+  Vec6 e;
+  Mat6 covariance;       ///< the alignment's (JᵀWJ)⁻¹
+  Vec3 t_true, t_error;  ///< the true translation of T_nr and the measured one's error
 };
 
 /// Sums over the datasets.
@@ -128,7 +135,60 @@ double consecutiveCorrelation(const std::vector<Link>& links, int k) {
   return sxx > 0 && syy > 0 ? sxy / std::sqrt(sxx * syy) : std::nan("");
 }
 
-void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const std::string& imu_truth, Totals* totals) {
+/// Where the links' error comes from, as one markdown row: the NEES by the
+/// time from the keyframe; the NEES of the difference of consecutive links
+/// to one keyframe against Σ_n + Σ_m (6 if their errors are independent,
+/// 6(1 − ρ) if they share ρ of them); and the translation error along the
+/// true translation read as a scale error δ = (Δt·t)/|t|² (a keyframe's depth
+/// error would scale all its links' translations alike): the share of the
+/// squared translation error it explains (1/3 for an error of no preferred
+/// direction) and the intraclass correlation of δ by keyframe.
+std::string sharedPartRow(const std::string& name, const std::vector<Link>& links) {
+  std::string row = "| " + name + " |";
+  const double bins[] = {0.0, 0.1, 0.2, 0.4, 1e9};
+  for (int b = 0; b < 4; ++b) {
+    double sum = 0;
+    std::size_t count = 0;
+    for (const Link& l : links) {
+      const double gap_s = static_cast<double>(l.t_ns - l.t_ref_ns) * 1e-9;
+      if (gap_s < bins[b] || gap_s >= bins[b + 1]) continue;
+      sum += l.nees;
+      ++count;
+    }
+    char cell[64];
+    std::snprintf(cell, sizeof(cell), " %.1f (%zu) |", count ? sum / static_cast<double>(count) : std::nan(""), count);
+    row += cell;
+  }
+  double difference_nees = 0;
+  std::size_t differences = 0;
+  for (std::size_t i = 1; i < links.size(); ++i) {
+    if (links[i].t_ref_ns != links[i - 1].t_ref_ns) continue;
+    const Vec6 d = links[i].e - links[i - 1].e;
+    difference_nees += d.dot((links[i].covariance + links[i - 1].covariance).ldlt().solve(d));
+    ++differences;
+  }
+  double along = 0, all = 0;
+  std::vector<Link> scales;  // `normalised` holds δ in every component
+  for (const Link& l : links) {
+    all += l.t_error.squaredNorm();
+    if (l.t_true.norm() < 0.05) continue;  // too short a translation to have a scale
+    const double delta = l.t_error.dot(l.t_true) / l.t_true.squaredNorm();
+    along += (delta * l.t_true).squaredNorm();
+    scales.push_back(l);
+    scales.back().normalised = Vec6::Constant(delta);
+  }
+  std::map<std::int64_t, std::vector<const Link*>> scale_by_keyframe;
+  for (const Link& l : scales) scale_by_keyframe[l.t_ref_ns].push_back(&l);
+  char tail[128];
+  std::snprintf(tail, sizeof(tail), " %.2f (%zu) | %.2f | %.2f |", differences ? difference_nees / static_cast<double>(differences) : std::nan(""),
+                differences, all > 0 ? along / all : std::nan(""), intraclassCorrelation(scale_by_keyframe, 0));
+  return row + tail;
+}
+
+void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const std::string& imu_truth, Totals* totals,
+             std::string* shared_part_row) {
+  // The folder's name, with or without a trailing slash.
+  const std::string name = std::filesystem::path(dataset + "/").lexically_normal().parent_path().filename().string();
   const io::Trajectory gt = io::readTrajectory(dataset + "/mav0/state_groundtruth_estimate0/data.csv");
   const io::Trajectory imu_gt = imu_truth.empty() ? gt : io::readTrajectory(imu_truth);
   const Config config;
@@ -153,7 +213,8 @@ void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const st
     const Eigen::LLT<Mat6> llt(r.alignment.covariance);
     if (llt.info() != Eigen::Success) return;
     const Vec6 sigma = r.alignment.covariance.diagonal().cwiseSqrt();
-    Link l{r.t_ns, r.reference_t_ns, e.cwiseQuotient(sigma), llt.matrixL().solve(e).squaredNorm()};
+    Link l{r.t_ns, r.reference_t_ns, e.cwiseQuotient(sigma), llt.matrixL().solve(e).squaredNorm(), e, r.alignment.covariance, truth.translation(),
+           r.alignment.T_nr.translation() - truth.translation()};
     links.push_back(l);
   };
   const std::string out = (std::filesystem::temp_directory_path() / "edgevio_link_consistency").string();
@@ -190,7 +251,7 @@ void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const st
   }
   const double m = static_cast<double>(std::max<std::size_t>(links.size(), 1));
   std::printf("| %s | %zu | %.1f (%.1f) | %.2f %.2f %.2f | %.2f %.2f %.2f | %.2f %.2f | %.2f %.2f | %.2f (%.2f) |\n",
-              std::filesystem::path(dataset).filename().c_str(), links.size(), nees / m, median(link_each), std::sqrt(sum_sq[0] / m),
+              name.c_str(), links.size(), nees / m, median(link_each), std::sqrt(sum_sq[0] / m),
               std::sqrt(sum_sq[1] / m), std::sqrt(sum_sq[2] / m), std::sqrt(sum_sq[3] / m), std::sqrt(sum_sq[4] / m),
               std::sqrt(sum_sq[5] / m), (intraclassCorrelation(by_keyframe, 0) + intraclassCorrelation(by_keyframe, 1) +
                                         intraclassCorrelation(by_keyframe, 2)) / 3,
@@ -199,6 +260,7 @@ void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const st
               (consecutiveCorrelation(links, 0) + consecutiveCorrelation(links, 1) + consecutiveCorrelation(links, 2)) / 3,
               (consecutiveCorrelation(links, 3) + consecutiveCorrelation(links, 4) + consecutiveCorrelation(links, 5)) / 3,
               inertial ? inertial_nees / static_cast<double>(inertial) : std::nan(""), median(inertial_each));
+  *shared_part_row = sharedPartRow(name, links);
   std::fflush(stdout);
   totals->links += links.size();
   totals->nees += nees;
@@ -253,10 +315,18 @@ int main(int argc, char** argv) {
   std::printf("| dataset | links | NEES mean (median) | RMS e/sigma: tx ty tz | rx ry rz | ICC t, r | consecutive t, r | IMU NEES mean (median) |\n");
   std::printf("|---|---:|---:|---|---|---|---|---:|\n");
   Totals t;
-  for (const std::string& d : datasets) analyse(d, mode, skip, imu_truth, &t);
+  std::vector<std::string> shared_part_rows(datasets.size());
+  for (std::size_t i = 0; i < datasets.size(); ++i) analyse(datasets[i], mode, skip, imu_truth, &t, &shared_part_rows[i]);
   const double m = static_cast<double>(std::max<std::size_t>(t.links, 1));
   std::printf("| all | %zu | %.1f | %.2f %.2f %.2f | %.2f %.2f %.2f | | | %.2f |\n", t.links, t.nees / m, std::sqrt(t.sum_sq[0] / m),
               std::sqrt(t.sum_sq[1] / m), std::sqrt(t.sum_sq[2] / m), std::sqrt(t.sum_sq[3] / m), std::sqrt(t.sum_sq[4] / m),
               std::sqrt(t.sum_sq[5] / m), t.inertial ? t.inertial_nees / static_cast<double>(t.inertial) : std::nan(""));
+  std::printf("\nWhere the error comes from: NEES (links) by the time from the keyframe; NEES of the difference of consecutive "
+              "links to one keyframe against the sum of their covariances (6 if independent); the translation error along the "
+              "true translation as a scale error: its share of the squared error (1/3 if of no preferred direction) and its "
+              "intraclass correlation by keyframe\n\n");
+  std::printf("| dataset | < 0.1 s | 0.1-0.2 s | 0.2-0.4 s | >= 0.4 s | consecutive differences | scale share | scale ICC |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const std::string& row : shared_part_rows) std::printf("%s\n", row.c_str());
   return 0;
 }
