@@ -5,12 +5,14 @@
 #include <iostream>
 
 #include "edgevio/cli/commands.h"
+#include "edgevio/common/process_memory.h"
 #include "edgevio/config/config.h"
 #include "edgevio/pipeline/run_writer.h"
 #include "edgevio/sim/faults.h"
 
 int main(int argc, char** argv) {
   using namespace edgevio;
+  keepFreedMemory();
   CLI::App app{"edgevio " EDGEVIO_VERSION
                ": edge-alignment stereo visual-inertial odometry for aggressive motion"};
   app.require_subcommand(0, 1);

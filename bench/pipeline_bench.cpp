@@ -16,6 +16,7 @@
 #include <string>
 #include <thread>
 
+#include "edgevio/common/process_memory.h"
 #include "edgevio/config/config.h"
 #include "edgevio/pipeline/component_times.h"
 #include "edgevio/pipeline/run.h"
@@ -37,6 +38,7 @@ std::string machine() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  edgevio::keepFreedMemory();
   std::string dataset = argc > 1 ? argv[1] : "";
   const std::string mode = argc > 2 ? argv[2] : "edge+imu";
   const std::optional<pipeline::Mode> parsed_mode = pipeline::parseMode(mode);
