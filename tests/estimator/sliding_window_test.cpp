@@ -175,6 +175,40 @@ TEST(SlidingWindow, WithFirstEstimateJacobiansMarginalisingKeepsTheSolution) {
   expectMarginalizationEquivalent(0, true);
 }
 
+/// The solved window is the minimum of the cost over every state, so also
+/// over the newest alone with the others held there: from a perturbed start
+/// solveNewest must return the newest state to it and move no other.
+void expectNewestStateFoundAlone(bool newest_in_prior) {
+  std::vector<NavState> truth;
+  Window solved = syntheticWindow(&truth);
+  const EstimatorOptions o = exactOptions();
+  solve(&solved, o);
+  if (newest_in_prior) {  // the second-newest marginalised: the prior holds the newest
+    marginalize(&solved, solved.states.size() - 2, o);
+    solve(&solved, o);
+    ASSERT_NE(std::find(solved.prior.states.begin(), solved.prior.states.end(), solved.states.size() - 1),
+              solved.prior.states.end());
+  }
+  Window w = solved;
+  NavState& newest = w.states.back().x;
+  newest.p_w += Vec3(0.05, -0.03, 0.02);
+  newest.R_w_b = newest.R_w_b * SO3::exp(Vec3(0.02, -0.01, 0.03));
+  newest.v_w += Vec3(-0.1, 0.05, 0.1);
+  newest.b_a += Vec3(0.01, 0.0, -0.01);
+  const SolveSummary s = solveNewest(&w, o);
+  EXPECT_LT(s.final_cost, s.initial_cost);
+  // Gauss-Newton converges to the stationary point up to the links' second-order terms: 1e-6 of a 0.1 start.
+  EXPECT_LT(boxminus(w.states.back().x, solved.states.back().x).norm(), 1e-6);
+  for (std::size_t k = 0; k + 1 < w.states.size(); ++k) {
+    EXPECT_EQ(w.states[k].x.p_w, solved.states[k].x.p_w) << k;
+    EXPECT_EQ(w.states[k].x.v_w, solved.states[k].x.v_w) << k;
+    EXPECT_EQ(w.states[k].x.R_w_b.matrix(), solved.states[k].x.R_w_b.matrix()) << k;
+  }
+}
+
+TEST(SlidingWindow, TheNewestStateSolvedAloneReturnsToTheWindowsSolution) { expectNewestStateFoundAlone(false); }
+TEST(SlidingWindow, TheNewestStateSolvedAloneReturnsToTheSolutionWhenThePriorHoldsIt) { expectNewestStateFoundAlone(true); }
+
 /// ‖H·n‖ / (‖H‖·‖n‖) for the prior's Hessian H and n the infinitesimal change
 /// of its states' errors under a gauge motion (a world translation along
 /// `shift`, plus a rotation by yaw_rate about the world z axis), taken at the

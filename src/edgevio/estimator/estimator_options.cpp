@@ -6,9 +6,10 @@ namespace edgevio::estimator {
 EDGEVIO_OPTIONS_TABLE(EstimatorOptions,
     number("window_size", &S::window_size, 30, "-", "N: states kept in the sliding window", atLeast(3)),
     number("max_iterations", &S::max_iterations, 2, "-", "Gauss-Newton iterations per frame", atLeast(1)),
-    number("realtime_pose_iterations", &S::realtime_pose_iterations, 1, "-",
-           "--realtime: the frame's pose is handed out after this many of them (the rest follow it; offline all precede it)",
-           atLeast(1)),
+    number("realtime_pose_iterations", &S::realtime_pose_iterations, 0, "-",
+           "--realtime: the frame's pose is handed out after this many of them (the rest follow it; offline all precede it); "
+           "0: after the newest state alone is solved, the others held, and all of them follow",
+           atLeast(0)),
     number("huber_translation_m", &S::huber_translation_m, 0.1, "m",
            "c_t of eq 24: Huber threshold of a visual link's translation error", above(0)),
     number("huber_rotation_deg", &S::huber_rotation_deg, 2.0, "deg",

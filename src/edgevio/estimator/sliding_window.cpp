@@ -195,13 +195,17 @@ void addCalibrationPrior(const CalibrationState& c, long slot, Normal* n) {
   n->H.block<15, 15>(15 * slot, 15 * slot).diagonal() += info;
 }
 
+/// Which priors linearize adds beside the links: both (the whole window's
+/// cost), the marginalisation's only (the calibration file's prior is never
+/// folded into it), or none (its states are not in `slot`).
+enum class Priors { kBoth, kMarginal, kNone };
+
 /// Adds the factors selected by the predicates, with local indices from
 /// `slot` and the calibration block (with the window's calibration) at
-/// `calib_slot`; `whole_window` also adds the calibration file's prior, which
-/// no marginalisation folds.
+/// `calib_slot`, and the `priors`.
 template <class UseInertial, class UseVisual>
 void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::size_t, long>& slot, long calib_slot,
-               bool whole_window, UseInertial use_inertial, UseVisual use_visual, Normal* n) {
+               Priors priors, UseInertial use_inertial, UseVisual use_visual, Normal* n) {
   const std::vector<const NavState*> jp = jacobianPoints(w, o);
   // Jacobians in the residual's own call when they are taken at the estimate,
   // in a second call at the first estimates otherwise.
@@ -229,8 +233,8 @@ void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::s
     else
       n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}});
   }
-  if (whole_window && w.calibration) addCalibrationPrior(*w.calibration, calib_slot, n);
-  if (!w.prior.empty()) {
+  if (priors == Priors::kBoth && w.calibration) addCalibrationPrior(*w.calibration, calib_slot, n);
+  if (priors != Priors::kNone && !w.prior.empty()) {
     // ½δᵀHδ + bᵀδ at δ = x ⊟ x0: gradient b + Hδ, Hessian H (the Jacobian of
     // ⊟ is taken as identity: first-estimate linearisation of the prior).
     const std::size_t m = w.prior.states.size(), blocks = m + (w.prior.calibration ? 1 : 0);
@@ -311,7 +315,7 @@ std::size_t windowBlocks(const Window& w) { return w.states.size() + (w.calibrat
 
 double windowCost(const Window& w, const EstimatorOptions& o) {
   Normal n(windowBlocks(w), true);
-  linearize(w, o, identitySlots(w.states.size()), static_cast<long>(w.states.size()), true,
+  linearize(w, o, identitySlots(w.states.size()), static_cast<long>(w.states.size()), Priors::kBoth,
             [](const InertialLink&) { return true; }, [](const VisualLink&) { return true; }, &n);
   return n.cost;
 }
@@ -324,7 +328,7 @@ SolveSummary solve(Window* w, const EstimatorOptions& o) {
   Normal n(windowBlocks(*w));
   for (int it = 0; it < o.max_iterations; ++it) {
     n.reset();
-    linearize(*w, o, slots, static_cast<long>(N), true, [](const InertialLink&) { return true; },
+    linearize(*w, o, slots, static_cast<long>(N), Priors::kBoth, [](const InertialLink&) { return true; },
               [](const VisualLink&) { return true; }, &n);
     if (it == 0) s.initial_cost = n.cost;
     double damping = o.damping;
@@ -357,6 +361,51 @@ SolveSummary solve(Window* w, const EstimatorOptions& o) {
   return s;
 }
 
+SolveSummary solveNewest(Window* w, const EstimatorOptions& o) {
+  SolveSummary s;
+  const std::size_t N = w->states.size();
+  if (N < 2) return s;  // a lone state is the gauge's
+  const std::size_t k = N - 1;
+  // Its links' other states; the prior's too when it holds the newest state
+  // (after the second-newest was marginalised), with the calibration last.
+  std::map<std::size_t, long> slot = {{k, 0}};
+  const auto addState = [&](std::size_t i) { slot.emplace(i, static_cast<long>(slot.size())); };
+  for (const InertialLink& l : w->inertial)
+    if (l.j == k) addState(l.i);
+  for (const VisualLink& l : w->visual)
+    if (l.n == k) addState(l.r);
+  const bool in_prior = std::find(w->prior.states.begin(), w->prior.states.end(), k) != w->prior.states.end();
+  if (in_prior)
+    for (std::size_t i : w->prior.states) addState(i);
+  const auto blocks = slot.size() + (w->calibration ? 1 : 0);
+  const auto linearizeNewest = [&](Normal* n) {
+    linearize(*w, o, slot, static_cast<long>(slot.size()), in_prior ? Priors::kMarginal : Priors::kNone,
+              [k](const InertialLink& l) { return l.j == k; }, [k](const VisualLink& l) { return l.n == k; }, n);
+  };
+  Normal n(blocks);
+  for (int it = 0; it < o.max_iterations; ++it) {
+    n.reset();
+    linearizeNewest(&n);
+    if (it == 0) s.initial_cost = n.cost;
+    // Every other block held: the newest state's rows and columns alone.
+    const Vec15 step = perturbedCholeskySolve(n.H.topLeftCorner<15, 15>(), -n.g.head<15>(), o.damping);
+    if (!step.allFinite()) {
+      s.stopped = true;
+      break;
+    }
+    w->states[k].x = boxplus(w->states[k].x, step);
+    ++s.iterations;
+    if (step.norm() < kNegligibleStep) {
+      s.stopped = true;
+      break;
+    }
+  }
+  Normal cost(blocks, true);  // of the same terms: the whole window's would cost a pass over all of it
+  linearizeNewest(&cost);
+  s.final_cost = cost.cost;
+  return s;
+}
+
 namespace {
 
 /// State k first, then every state that shares a link with it, then those of the old prior.
@@ -381,7 +430,7 @@ MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involv
   for (std::size_t a = 0; a < involved.size(); ++a) slot[involved[a]] = static_cast<long>(a);
   // The calibration block, when the window has one, is last and stays in the prior.
   Normal n(involved.size() + (w.calibration ? 1 : 0));
-  linearize(w, o, slot, static_cast<long>(involved.size()), false, [&](const InertialLink& l) { return l.i == k || l.j == k; },
+  linearize(w, o, slot, static_cast<long>(involved.size()), Priors::kMarginal, [&](const InertialLink& l) { return l.i == k || l.j == k; },
             [&](const VisualLink& l) { return l.r == k || l.n == k; }, &n);
   // Schur complement on the first 15 rows/columns (state k).
   const long m = 15, r = n.H.rows() - m;

@@ -121,6 +121,13 @@ double windowCost(const Window& w, const EstimatorOptions& o);
 /// step is negligible.
 SolveSummary solve(Window* w, const EstimatorOptions& o);
 
+/// Gauss-Newton on the newest state alone, every other state and the
+/// calibration held at their estimates (the links into it, and the prior
+/// when it holds it): o.max_iterations steps of a 15x15 system at most. In
+/// real time it gives the frame's pose before the window's solve
+/// (estimator.realtime_pose_iterations: 0).
+SolveSummary solveNewest(Window* w, const EstimatorOptions& o);
+
 /// Removes state `index`, folding its links and the old prior into a new prior.
 void marginalize(Window* w, std::size_t index, const EstimatorOptions& o);
 

@@ -207,7 +207,6 @@ EstimatorUpdate VioEstimator::solveWindow(const SE3& restart_pose, int iteration
   u.solve_ms = msSince(t0);
   iterations_left_ = options_.max_iterations;
   iterate(std::min(iterations, options_.max_iterations), restart_pose, &u);
-  u.initial_cost = first_cost_;
   return u;
 }
 
@@ -219,12 +218,15 @@ void VioEstimator::iterate(int iterations, const SE3& restart_pose, EstimatorUpd
   const auto t0 = std::chrono::steady_clock::now();
   EstimatorOptions o = options_;
   o.max_iterations = iterations;
-  const SolveSummary s = solve(&window_, o);
-  if (iterations_left_ == options_.max_iterations) first_cost_ = s.initial_cost;
-  // A step that vanished or failed ends the frame's solve, as it would have in one call.
-  iterations_left_ = s.stopped ? 0 : iterations_left_ - iterations;
-  u->iterations += s.iterations;
-  u->final_cost = s.final_cost;
+  // 0: the newest state alone, a pose before the window's iterations, which all follow.
+  const SolveSummary s = iterations == 0 ? solveNewest(&window_, options_) : solve(&window_, o);
+  if (iterations > 0) {
+    if (iterations_left_ == options_.max_iterations) u->initial_cost = s.initial_cost;
+    // A step that vanished or failed ends the frame's solve, as it would have in one call.
+    iterations_left_ = s.stopped ? 0 : iterations_left_ - iterations;
+    u->iterations += s.iterations;
+    u->final_cost = s.final_cost;
+  }
   u->reset_reason = checkHealth();
   if (u->reset_reason.empty() && !std::isfinite(s.final_cost)) u->reset_reason = "non-finite cost";
   if (!u->reset_reason.empty()) {

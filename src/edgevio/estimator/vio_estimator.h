@@ -127,9 +127,11 @@ class VioEstimator {
   /// Gauss-Newton iterations (or restarts the window as optimize does),
   /// finishSolve the rest, marginalizeWhenFull the marginalisation (only
   /// after a solve that did not restart the window). The three in a row,
-  /// with any `iterations`, leave the window as optimize does, unless the
-  /// estimate fails the health check after the first part only (it then
-  /// restarts there, before the pose is handed out).
+  /// with any `iterations` > 0, leave the window as optimize does, unless
+  /// the estimate fails the health check after the first part only (it then
+  /// restarts there, before the pose is handed out). With `iterations` 0
+  /// solveWindow solves the newest state alone (solveNewest), the others
+  /// held, and all of the window's iterations follow in finishSolve, from there.
   EstimatorUpdate solveWindow(const geometry::SE3& restart_pose, int iterations);
   void finishSolve(const geometry::SE3& restart_pose, EstimatorUpdate* u);
   void marginalizeWhenFull(bool alignment_good, const KeyframeQuery& keyframes, EstimatorUpdate* u);
@@ -137,7 +139,7 @@ class VioEstimator {
  private:
   std::optional<std::size_t> indexOf(std::int64_t t_ns) const;
   std::string checkHealth() const;
-  /// Up to `iterations` Gauss-Newton iterations of the frame's solve, then the health check.
+  /// Up to `iterations` Gauss-Newton iterations of the frame's solve (0: the newest state alone), then the health check.
   void iterate(int iterations, const geometry::SE3& restart_pose, EstimatorUpdate* u);
   void restartAfterBlowUp(const geometry::SE3& pose);
   bool addVisualLink(std::size_t r, std::size_t n, const geometry::SE3& T_nr, const Mat6& covariance);
@@ -151,7 +153,6 @@ class VioEstimator {
   Window window_;
   imu::NavState predicted_newest_;  ///< IMU prediction of the newest state, for the external check
   int iterations_left_ = 0;         ///< Gauss-Newton iterations of the frame's solve still to run (finishSolve)
-  double first_cost_ = 0.0;         ///< the cost before the frame's first iteration
 };
 
 }  // namespace edgevio::estimator

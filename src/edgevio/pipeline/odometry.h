@@ -15,11 +15,12 @@
 // In the window's modes every new keyframe is also linked back into the
 // keyframes before it (loop/back_links.h). Marginalisation and a new
 // keyframe's depth (block matching) run once the frame's pose is out; so do,
-// in real time only, the solve's later Gauss-Newton iterations
-// (estimator.realtime_pose_iterations) and the keyframe's loop closure and
-// back links, whose links then join the next frame's solve instead of this
-// one's: a pose waits for no work that does not change it, and in real time
-// for none that changes it little.
+// in real time only, the window's Gauss-Newton iterations (by default all of
+// them: the pose is the newest state solved alone with the rest of the window
+// held; estimator.realtime_pose_iterations) and the keyframe's loop closure
+// and back links, whose links then join the next frame's solve instead of
+// this one's: a pose waits for no work that does not change it, and in real
+// time for none that changes it little.
 //
 // The keyframe policy (METHOD.md §3, §5): a frame becomes a keyframe when
 // tracking votes for it (its alignment failed, or edge counts, reference
