@@ -368,19 +368,21 @@ SolveSummary solveNewest(Window* w, const EstimatorOptions& o) {
   const std::size_t k = N - 1;
   // Its links' other states; the prior's too when it holds the newest state
   // (after the second-newest was marginalised), with the calibration last.
+  const auto touches = [k](std::size_t a, std::size_t b) { return a == k || b == k; };
   std::map<std::size_t, long> slot = {{k, 0}};
   const auto addState = [&](std::size_t i) { slot.emplace(i, static_cast<long>(slot.size())); };
   for (const InertialLink& l : w->inertial)
-    if (l.j == k) addState(l.i);
+    if (touches(l.i, l.j)) addState(l.i == k ? l.j : l.i);
   for (const VisualLink& l : w->visual)
-    if (l.n == k) addState(l.r);
+    if (touches(l.r, l.n)) addState(l.r == k ? l.n : l.r);
   const bool in_prior = std::find(w->prior.states.begin(), w->prior.states.end(), k) != w->prior.states.end();
   if (in_prior)
     for (std::size_t i : w->prior.states) addState(i);
   const auto blocks = slot.size() + (w->calibration ? 1 : 0);
   const auto linearizeNewest = [&](Normal* n) {
     linearize(*w, o, slot, static_cast<long>(slot.size()), in_prior ? Priors::kMarginal : Priors::kNone,
-              [k](const InertialLink& l) { return l.j == k; }, [k](const VisualLink& l) { return l.n == k; }, n);
+              [&](const InertialLink& l) { return touches(l.i, l.j); }, [&](const VisualLink& l) { return touches(l.r, l.n); },
+              n);
   };
   Normal n(blocks);
   for (int it = 0; it < o.max_iterations; ++it) {
