@@ -308,6 +308,21 @@ void reanchor(const NavState& oldest_before, Window* w) {
   }
 }
 
+/// State k first, then every state that shares a link with it, then (`with_prior`) those of the old prior.
+std::vector<std::size_t> statesInvolvedWith(const Window& w, std::size_t k, bool with_prior) {
+  std::vector<std::size_t> involved = {k};
+  const auto addState = [&](std::size_t i) {
+    if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
+  };
+  for (const auto& l : w.inertial)
+    if (l.i == k || l.j == k) addState(l.i == k ? l.j : l.i);
+  for (const auto& l : w.visual)
+    if (l.r == k || l.n == k) addState(l.r == k ? l.n : l.r);
+  if (with_prior)
+    for (std::size_t i : w.prior.states) addState(i);
+  return involved;
+}
+
 }  // namespace
 
 /// Blocks in the window's normal equations: the states, then the calibration's.
@@ -369,15 +384,10 @@ SolveSummary solveNewest(Window* w, const EstimatorOptions& o) {
   // Its links' other states; the prior's too when it holds the newest state
   // (after the second-newest was marginalised), with the calibration last.
   const auto touches = [k](std::size_t a, std::size_t b) { return a == k || b == k; };
-  std::map<std::size_t, long> slot = {{k, 0}};
-  const auto addState = [&](std::size_t i) { slot.emplace(i, static_cast<long>(slot.size())); };
-  for (const InertialLink& l : w->inertial)
-    if (touches(l.i, l.j)) addState(l.i == k ? l.j : l.i);
-  for (const VisualLink& l : w->visual)
-    if (touches(l.r, l.n)) addState(l.r == k ? l.n : l.r);
   const bool in_prior = std::find(w->prior.states.begin(), w->prior.states.end(), k) != w->prior.states.end();
-  if (in_prior)
-    for (std::size_t i : w->prior.states) addState(i);
+  const std::vector<std::size_t> involved = statesInvolvedWith(*w, k, in_prior);
+  std::map<std::size_t, long> slot;
+  for (std::size_t a = 0; a < involved.size(); ++a) slot[involved[a]] = static_cast<long>(a);
   const auto blocks = slot.size() + (w->calibration ? 1 : 0);
   const auto linearizeNewest = [&](Normal* n) {
     linearize(*w, o, slot, static_cast<long>(slot.size()), in_prior ? Priors::kMarginal : Priors::kNone,
@@ -409,20 +419,6 @@ SolveSummary solveNewest(Window* w, const EstimatorOptions& o) {
 }
 
 namespace {
-
-/// State k first, then every state that shares a link with it, then those of the old prior.
-std::vector<std::size_t> statesInvolvedWith(const Window& w, std::size_t k) {
-  std::vector<std::size_t> involved = {k};
-  const auto addState = [&](std::size_t i) {
-    if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
-  };
-  for (const auto& l : w.inertial)
-    if (l.i == k || l.j == k) addState(l.i == k ? l.j : l.i);
-  for (const auto& l : w.visual)
-    if (l.r == k || l.n == k) addState(l.r == k ? l.n : l.r);
-  for (std::size_t i : w.prior.states) addState(i);
-  return involved;
-}
 
 /// The prior left by marginalising involved[0]: the Schur complement of the
 /// normal equations of its links and the old prior (eqs 20-21).
@@ -472,7 +468,7 @@ MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involv
 }  // namespace
 
 void marginalize(Window* w, std::size_t k, const EstimatorOptions& o) {
-  MarginalPrior prior = schurPrior(*w, statesInvolvedWith(*w, k), o);
+  MarginalPrior prior = schurPrior(*w, statesInvolvedWith(*w, k, true), o);
   // Remove state k and every link that touched it; renumber.
   const auto renumber = [k](std::size_t i) { return i > k ? i - 1 : i; };
   std::vector<InertialLink> inertial;
