@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -22,81 +23,145 @@ constexpr double kMinProgressPx = 1e-4;
 // 1e6 m² (rad²) fails the self check's σ test and weighs nothing in a window.
 constexpr double kUnconstrainedVariance = 1e6;
 
-/// T as a rotation matrix and translation, converted once per pass over the
-/// points instead of once per point.
-struct PoseRt {
-  explicit PoseRt(const SE3& T) : R(T.rotationMatrix()), t(T.translation()) {}
+/// T as a rotation matrix and translation, with the level's intrinsics:
+/// converted once per pass over the points, not once per point.
+struct LevelProjection {
+  LevelProjection(const SE3& T, const vision::LevelCamera& c)
+      : R(T.rotationMatrix()), t(T.translation()), fx(c.fx), fy(c.fy), cx(c.cx), cy(c.cy) {}
   Mat3 R;
   Vec3 t;
+  double fx, fy, cx, cy;
 };
 
-bool project(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, Vec2* uv, Jacobian26* J) {
+/// A point T·P projected: its pixel and, with the Jacobian, the rows a0, a1
+/// of ∂uv/∂δp = ∂π/∂P'·R.
+struct Projected {
+  Vec3 P;
+  double u = 0, v = 0;
+  Vec3 a0, a1;
+
+  /// ∂(g·uv)/∂ξ for a direction g in the image. T·exp(ξ)·P ≈ T·(P + δp +
+  /// δθ × P), so ∂P'/∂ξ = R·[I | −hat(P)] and ∂uv/∂ξ = [A | −A·hat(P)] with
+  /// A = (a0; a1), whose rows of −A·hat(P) are (P × a0)ᵀ and (P × a1)ᵀ.
+  Jacobian16 directional(double g0, double g1) const {
+    Jacobian16 J;
+    J << g0 * a0.transpose() + g1 * a1.transpose(), g0 * P.cross(a0).transpose() + g1 * P.cross(a1).transpose();
+    return J;
+  }
+
+  /// The reference edge's normal in the current image: its tangent, one
+  /// keyframe pixel long at P's depth, through ∂uv/∂P (see mapEdgeNormal).
+  Vec2 mappedNormal(const Vec2& n_ref, double fx, double fy) const {
+    const double dx = -P.z() * n_ref.y() / fx, dy = P.z() * n_ref.x() / fy;
+    const double tx = a0.x() * dx + a0.y() * dy, ty = a1.x() * dx + a1.y() * dy;
+    const double len = std::sqrt(tx * tx + ty * ty);
+    return len > 1e-12 ? Vec2(ty / len, -tx / len) : n_ref;
+  }
+};
+
+bool project(const Vec3& P, const LevelProjection& T, bool with_jacobian, Projected* out) {
   const Vec3 Pc = T.R * P + T.t;
   if (Pc.z() <= kMinDepthM) return false;
   const double iz = 1.0 / Pc.z();
   const double x = Pc.x() * iz, y = Pc.y() * iz;
-  *uv = Vec2(c.fx * x + c.cx, c.fy * y + c.cy);
-  if (J) {
-    // T·exp(ξ)·P ≈ T·(P + δp + δθ × P): ∂P'/∂ξ = R·[I | −hat(P)]. With A = ∂π/∂P'·R
-    // (2x3), ∂uv/∂ξ = [A | −A·hat(P)], and row a of −A·hat(P) is (P × a)ᵀ.
-    const Vec3 a0 = c.fx * iz * (T.R.row(0) - x * T.R.row(2)).transpose();
-    const Vec3 a1 = c.fy * iz * (T.R.row(1) - y * T.R.row(2)).transpose();
-    J->row(0) << a0.transpose(), P.cross(a0).transpose();
-    J->row(1) << a1.transpose(), P.cross(a1).transpose();
+  out->P = P;
+  out->u = T.fx * x + T.cx;
+  out->v = T.fy * y + T.cy;
+  if (with_jacobian) {
+    out->a0 = T.fx * iz * (T.R.row(0) - x * T.R.row(2)).transpose();
+    out->a1 = T.fy * iz * (T.R.row(1) - y * T.R.row(2)).transpose();
   }
   return true;
 }
 
-/// The reference edge's normal in the current image, from ∂uv/∂P (Juv's
-/// first three columns): see mapEdgeNormal.
-Vec2 mappedNormal(const Vec3& P, const Eigen::Vector2f& n_ref, const Jacobian26& Juv, const vision::LevelCamera& c) {
-  const Vec3 dP(-P.z() * n_ref.y() / c.fx, P.z() * n_ref.x() / c.fy, 0.0);
-  const Vec2 tau = Juv.leftCols<3>() * dP;
-  const double len = tau.norm();
-  return len > 1e-12 ? Vec2(tau.y() / len, -tau.x() / len) : n_ref.cast<double>();
+/// Projects P; false when it lands behind the camera or outside the border.
+bool projectInside(const Vec3& P, const LevelProjection& T, int width, int height, int border, bool with_jacobian,
+                   Projected* p) {
+  return project(P, T, with_jacobian, p) && p->u >= border && p->v >= border && p->u <= width - 1 - border &&
+         p->v <= height - 1 - border;
 }
 
-bool residual(const Vec3& P, const PoseRt& T, const vision::LevelCamera& c, const vision::DistanceTransform& dt,
-              int border, double* r, Jacobian16* J, bool point_to_line, double* distance,
-              const Eigen::Vector2f* n_ref = nullptr, double* normal_cos = nullptr, Vec2* uv_out = nullptr) {
-  Vec2 uv;
-  Jacobian26 Juv;
-  if (!project(P, T, c, &uv, J || n_ref ? &Juv : nullptr)) return false;
-  if (uv_out) *uv_out = uv;
-  if (uv.x() < border || uv.y() < border || uv.x() > c.width - 1 - border || uv.y() > c.height - 1 - border) return false;
-  if (point_to_line && dt.hasLines()) {
-    if (distance) *distance = dt.value(uv.x(), uv.y());
-    Vec2 e, n;
-    dt.nearestLine(uv.x(), uv.y(), &e, &n);
-    *r = (uv - e).dot(n);
-    if (J) *J = n.transpose() * Juv;
-    if (n_ref && normal_cos) *normal_cos = mappedNormal(P, *n_ref, Juv, c).dot(n);
-    return true;
+/// What a projected point reads from the level's distance transform: V and,
+/// for the point-to-line residual, the nearest edge line (point e, normal
+/// n), else ∇V (in n).
+struct Sample {
+  float value = 0;
+  Vec2 e = Vec2::Zero(), n = Vec2::Zero();
+};
+
+Sample sample(const Projected& p, const vision::DistanceTransform& dt, bool point_to_line) {
+  Sample s;
+  if (point_to_line) {
+    s.value = dt.value(p.u, p.v);
+    dt.nearestLine(p.u, p.v, &s.e, &s.n);
+  } else {
+    float gu, gv;
+    dt.valueAndGradient(p.u, p.v, &s.value, &gu, &gv);
+    s.n = Vec2(gu, gv);
   }
-  float v, gu, gv;
-  dt.valueAndGradient(uv.x(), uv.y(), &v, &gu, &gv);
-  if (distance) *distance = v;
-  *r = v;
-  if (J) *J = gu * Juv.row(0) + gv * Juv.row(1);
-  return true;
+  return s;
+}
+
+/// One reference point's residual on a level (see edgeResidual).
+struct PointResidual {
+  double u = 0, v = 0;    ///< its pixel
+  double r = 0;           ///< υ
+  double distance = 0;    ///< V(u), whichever residual υ is
+  double normal_cos = 1;  ///< mapped reference normal · nearest edge normal (1: not checked)
+  Jacobian16 J;           ///< ∂υ/∂ξ
+};
+
+/// The residual of a projected point from its sample. `n_ref`: the point's
+/// normal in the keyframe, checked against the nearest edge's (point-to-line
+/// only; null: not checked).
+PointResidual pointResidual(const Projected& p, const Sample& smp, const LevelProjection& T, bool with_jacobian,
+                            bool point_to_line, const Eigen::Vector2f* n_ref) {
+  PointResidual out;
+  out.u = p.u;
+  out.v = p.v;
+  out.distance = smp.value;
+  const Vec2& n = smp.n;
+  if (point_to_line) {
+    out.r = (Vec2(p.u, p.v) - smp.e).dot(n);
+    if (n_ref) out.normal_cos = p.mappedNormal(n_ref->cast<double>(), T.fx, T.fy).dot(n);
+  } else {
+    out.r = out.distance;
+  }
+  if (with_jacobian) out.J = p.directional(n.x(), n.y());
+  return out;
 }
 
 }  // namespace
 
 bool projectWithJacobian(const Vec3& P, const SE3& T, const vision::LevelCamera& c, Vec2* uv, Jacobian26* J) {
-  return project(P, PoseRt(T), c, uv, J);
+  Projected p;
+  if (!project(P, LevelProjection(T, c), J != nullptr, &p)) return false;
+  *uv = Vec2(p.u, p.v);
+  if (J) {
+    J->row(0) << p.a0.transpose(), P.cross(p.a0).transpose();
+    J->row(1) << p.a1.transpose(), P.cross(p.a1).transpose();
+  }
+  return true;
 }
 
 Vec2 mapEdgeNormal(const Vec3& P, const Vec2& n_ref, const SE3& T, const vision::LevelCamera& c) {
-  Vec2 uv;
-  Jacobian26 Juv;
-  if (!project(P, PoseRt(T), c, &uv, &Juv)) return n_ref;
-  return mappedNormal(P, n_ref.cast<float>(), Juv, c);
+  Projected p;
+  const LevelProjection Tc(T, c);
+  if (!project(P, Tc, true, &p)) return n_ref;
+  return p.mappedNormal(n_ref, Tc.fx, Tc.fy);
 }
 
 bool edgeResidual(const Vec3& P, const SE3& T, const vision::LevelCamera& c, const vision::DistanceTransform& dt,
                   int border, double* r, Jacobian16* J, bool point_to_line, double* distance) {
-  return residual(P, PoseRt(T), c, dt, border, r, J, point_to_line, distance);
+  const LevelProjection Tc(T, c);
+  Projected p;
+  if (!projectInside(P, Tc, c.width, c.height, border, J != nullptr, &p)) return false;
+  const bool p2l = point_to_line && dt.hasLines();
+  const PointResidual res = pointResidual(p, sample(p, dt, p2l), Tc, J != nullptr, p2l, nullptr);
+  *r = res.r;
+  if (J) *J = res.J;
+  if (distance) *distance = res.distance;
+  return true;
 }
 
 namespace {
@@ -109,11 +174,11 @@ struct LevelStats {
   int considered = 0;  ///< points evaluated (all, or the strided subset)
 };
 
-/// Calls f(uv, r, J, V, w, other_edge) for each reference point (or an even
+/// Calls f(residual, w, other_edge) for each reference point (or an even
 /// stride of them, o.max_points) that lands inside the level's border: its
-/// pixel, residual, Jacobian, distance V and robust weight w. `normals`: the
-/// points' edge normals (null, or of another size: none). Returns the points
-/// considered.
+/// pixel, residual, Jacobian and distance V (in float) and robust weight w.
+/// `normals`: the points' edge normals (null, or of another size: none).
+/// Returns the points considered.
 template <class F>
 int forEachWeightedPoint(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector2f>* normals,
                          const SE3& T, const vision::EdgeLevel& level, const AlignmentOptions& o, bool finest, F&& f) {
@@ -121,30 +186,44 @@ int forEachWeightedPoint(const std::vector<Eigen::Vector3f>& points, const std::
   const std::size_t stride =
       o.max_points > 0 && points.size() > static_cast<std::size_t>(o.max_points) ? (points.size() + static_cast<std::size_t>(o.max_points) - 1) / static_cast<std::size_t>(o.max_points) : 1;
   const bool laplacian = o.weight == RobustWeight::kLaplacian;
-  Jacobian16 J;
-  Vec2 uv;
-  double r = 0.0, dist = 0.0;
-  const PoseRt Trt(T);
+  const LevelProjection Tc(T, level.camera);
   // The distance field's consistent pull towards edges gives the wide basin
   // on coarse levels; the line residual refines on the finest one.
-  const bool p2l = o.residual == Residual::kPointToLine && finest;
+  const bool p2l = o.residual == Residual::kPointToLine && finest && level.dt.hasLines();
   const bool check_normals = p2l && o.max_normal_angle_deg > 0 && normals && normals->size() == points.size();
   const double min_cos = std::cos(o.max_normal_angle_deg * kDegToRad);
+  const int width = level.camera.width, height = level.camera.height;
+  // In chunks, three passes: projection, then the chunk's reads of the
+  // distance transform (independent loads, their cache misses in flight
+  // together; one point at a time the arithmetic waited on each), then the
+  // residuals. The same arithmetic per point as one at a time.
+  constexpr std::size_t kChunk = 64;
+  std::array<Projected, kChunk> projected;
+  std::array<Sample, kChunk> samples;
+  std::array<std::size_t, kChunk> index;
   int considered = 0;
-  for (std::size_t idx = 0; idx < points.size(); idx += stride) {
-    const Eigen::Vector3f& pf = points[idx];
-    ++considered;
-    double normal_cos = 1.0;
-    if (!residual(pf.cast<double>(), Trt, level.camera, level.dt, o.border_px, &r, &J, p2l, &dist,
-                  check_normals ? &(*normals)[idx] : nullptr, &normal_cos, &uv))
-      continue;
-    // Weights from the distance V: the robust kernel judges how far the point
-    // is from any edge, whichever residual is minimised. A nearest edge whose
-    // normal (with its sign) points elsewhere than the reference edge's is
-    // another edge (the other side of a thin line, a crossing edge): weight 0.
-    const bool other_edge = normal_cos < min_cos;
-    const double w = other_edge ? 0.0 : laplacian ? std::exp(-dist) : 1.0 / (1.0 + dist * dist / o.cauchy_c2);
-    f(uv, r, J, dist, w, other_edge);
+  std::size_t idx = 0;
+  while (idx < points.size()) {
+    std::size_t inside = 0;
+    for (std::size_t c = 0; c < kChunk && idx < points.size(); ++c, idx += stride) {
+      ++considered;
+      if (projectInside(points[idx].cast<double>(), Tc, width, height, o.border_px, true, &projected[inside]))
+        index[inside++] = idx;
+    }
+    for (std::size_t c = 0; c < inside; ++c) samples[c] = sample(projected[c], level.dt, p2l);
+    for (std::size_t c = 0; c < inside; ++c) {
+      const PointResidual res =
+          pointResidual(projected[c], samples[c], Tc, true, p2l, check_normals ? &(*normals)[index[c]] : nullptr);
+      // Weights from the distance V: the robust kernel judges how far the
+      // point is from any edge, whichever residual is minimised. A nearest
+      // edge whose normal (with its sign) points elsewhere than the reference
+      // edge's is another edge (the other side of a thin line, a crossing
+      // edge): weight 0.
+      const double d = res.distance;
+      const bool other_edge = res.normal_cos < min_cos;
+      const double w = other_edge ? 0.0 : laplacian ? std::exp(-d) : 1.0 / (1.0 + d * d / o.cauchy_c2);
+      f(res, w, other_edge);
+    }
   }
   return considered;
 }
@@ -154,17 +233,16 @@ LevelStats accumulate(const std::vector<Eigen::Vector3f>& points, const std::vec
   LevelStats s;
   // Upper triangle of Σ w·JᵀJ, row by row (21 entries), and Σ w·r·Jᵀ.
   double h[21] = {};
-  s.considered = forEachWeightedPoint(points, normals, T, level, o, finest,
-                                      [&](const Vec2&, double r, const Jacobian16& J, double dist, double w, bool) {
-                                        int k = 0;
-                                        for (int i = 0; i < 6; ++i) {
-                                          const double wji = w * J[i];
-                                          for (int j = i; j < 6; ++j) h[k++] += wji * J[j];
-                                        }
-                                        s.g += w * r * J.transpose();
-                                        s.sum_r += dist;
-                                        ++s.visible;
-                                      });
+  s.considered = forEachWeightedPoint(points, normals, T, level, o, finest, [&](const PointResidual& p, double w, bool) {
+    int k = 0;
+    for (int i = 0; i < 6; ++i) {
+      const double wji = w * p.J[i];
+      for (int j = i; j < 6; ++j) h[k++] += wji * p.J[j];
+    }
+    s.g += w * p.r * p.J.transpose();
+    s.sum_r += p.distance;
+    ++s.visible;
+  });
   int k = 0;
   for (int i = 0; i < 6; ++i)
     for (int j = i; j < 6; ++j) s.H(i, j) = s.H(j, i) = h[k++];
@@ -295,9 +373,9 @@ std::vector<ReprojectedPoint> reprojectReferencePoints(const vision::KeyframeDep
   if (reference.points.empty() || current.levels.empty()) return out;
   const std::vector<Eigen::Vector2f>* normals = reference.normals.empty() ? nullptr : &reference.normals[0];
   forEachWeightedPoint(reference.points[0], normals, T_nr, current.levels[0], o, true,
-                       [&](const Vec2& uv, double, const Jacobian16&, double, double w, bool other_edge) {
+                       [&](const PointResidual& p, double w, bool other_edge) {
                          const PointFit fit = other_edge ? PointFit::kOtherEdge : w >= 0.5 ? PointFit::kInlier : PointFit::kOutlier;
-                         out.push_back({static_cast<float>(uv.x()), static_cast<float>(uv.y()), fit});
+                         out.push_back({static_cast<float>(p.u), static_cast<float>(p.v), fit});
                        });
   return out;
 }
