@@ -176,7 +176,7 @@ struct LevelStats {
 
 /// Calls f(residual, w, other_edge) for each reference point (or an even
 /// stride of them, o.max_points) that lands inside the level's border: its
-/// pixel, residual, Jacobian and distance V (in float) and robust weight w.
+/// pixel, residual, Jacobian and distance V, and robust weight w.
 /// `normals`: the points' edge normals (null, or of another size: none).
 /// Returns the points considered.
 template <class F>
