@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <map>
 
 #include "common/test_support.h"
 #include "edgevio/io/calibration_io.h"
@@ -135,6 +136,76 @@ TEST(SlidingWindow, SolveReachesTheNoiseLevel) {
     EXPECT_LT((w.states[k].x.p_w - truth[k].p_w).norm(), 0.02) << k;
     EXPECT_LT(geometry::angle(w.states[k].x.R_w_b.inverse() * truth[k].R_w_b), 0.01) << k;
   }
+}
+
+/// The visual links' cost when the links from one reference state share a
+/// part of their error, r_i = b + e_i with Cov(e_i) = (1 − c)Σ_i and
+/// Cov(b) = c·mean(Σ_i): ½ rᵀC⁻¹r over each group's stacked residuals, C
+/// built whole (the window's Woodbury form must give the same).
+double jointVisualCost(const Window& w, double c) {
+  std::map<std::size_t, std::vector<const VisualLink*>> groups;
+  for (const VisualLink& l : w.visual) groups[l.r].push_back(&l);
+  double cost = 0.0;
+  for (const auto& [reference, links] : groups) {
+    const long m = static_cast<long>(links.size());
+    Eigen::VectorXd r(6 * m);
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(6 * m, 6 * m);
+    Mat6 mean = Mat6::Zero();
+    for (long i = 0; i < m; ++i) {
+      const VisualLink& l = *links[static_cast<std::size_t>(i)];
+      r.segment<6>(6 * i) = relativePoseResidual(l.link.T_nr, w.states[l.r].x, w.states[l.n].x, w.T_b_c);
+      const Mat6 covariance = l.link.information.inverse();
+      C.block<6, 6>(6 * i, 6 * i) += (1.0 - c) * covariance;
+      mean += covariance / static_cast<double>(m);
+    }
+    for (long i = 0; i < m; ++i)
+      for (long j = 0; j < m; ++j) C.block<6, 6>(6 * i, 6 * j) += c * mean;
+    cost += 0.5 * r.dot(C.ldlt().solve(r));
+  }
+  return cost;
+}
+
+TEST(SlidingWindow, LinksFromOneKeyframeAreWeighedJointlyWithTheirSharedError) {
+  // Six links from state 0 (one group) and five lone ones: the window's cost
+  // moves by exactly the joint model's change of the visual part.
+  std::vector<NavState> truth;
+  const Window w = syntheticWindow(&truth);
+  const EstimatorOptions independent = exactOptions();
+  for (const double c : {0.3, 0.6, 0.9}) {
+    EstimatorOptions shared = exactOptions();
+    shared.visual_shared_fraction = c;
+    const double expected = jointVisualCost(w, c) - jointVisualCost(w, 0.0);
+    const double with = windowCost(w, shared), without = windowCost(w, independent);
+    // Rounding: about 1e-13 of the costs summed (the stiff prior's terms
+    // among them), and of the 6m x 6m factorisation's result.
+    EXPECT_NEAR(with - without, expected, 1e-13 * (with + without) + 1e-12 * std::abs(expected)) << c << ": " << with;
+  }
+}
+
+TEST(SlidingWindow, WithASharedErrorTheSolveEndsWhereTheCostIsFlat) {
+  // The gradient and normal matrix the solve builds must be the cost's: at
+  // its end every central difference of the cost along each state's 15
+  // directions is zero, relative to what it was at the start.
+  std::vector<NavState> truth;
+  Window w = syntheticWindow(&truth);
+  EstimatorOptions o = exactOptions();
+  o.visual_shared_fraction = 0.6;
+  const auto gradientNorm = [&](const Window& at) {
+    double sum = 0.0;
+    const double h = 1e-6;
+    for (std::size_t k = 1; k < at.states.size(); ++k)  // state 0: held by the test's stiff prior
+      for (int d = 0; d < 15; ++d) {
+        Window plus = at, minus = at;
+        plus.states[k].x = boxplus(at.states[k].x, imu::Vec15::Unit(d) * h);
+        minus.states[k].x = boxplus(at.states[k].x, imu::Vec15::Unit(d) * -h);
+        const double g = (windowCost(plus, o) - windowCost(minus, o)) / (2 * h);
+        sum += g * g;
+      }
+    return std::sqrt(sum);
+  };
+  const double before = gradientNorm(w);
+  solve(&w, o);
+  EXPECT_LT(gradientNorm(w), 1e-5 * before) << "at the start " << before;
 }
 
 void expectMarginalizationEquivalent(std::size_t removed, bool first_estimate_jacobians = false, bool calibration = false) {

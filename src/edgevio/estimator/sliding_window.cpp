@@ -133,6 +133,48 @@ struct Normal {
   }
 };
 
+/// The links from one reference state r_i = b + e_i: b the error they share
+/// (covariance Σ_s = shared × their mean covariance), e_i each one's own
+/// (information W_i, Huber-weighted). Their joint information, with
+/// D = diag(W_i⁻¹) and U = [I … I]ᵀ, is (D + U Σ_s Uᵀ)⁻¹ = diag(W_i) −
+/// [W_i] M⁻¹ [W_j] with M = Σ_s⁻¹ + Σ W_i (Woodbury). The links add their
+/// diag(W_i) terms themselves; this subtracts the rest: ½ sᵀM⁻¹s from the
+/// cost with s = Σ W_i r_i, and with B_a = Σ W_i ∂r_i/∂x_a over the links
+/// on block a, B_aᵀM⁻¹s from g_a and B_aᵀM⁻¹B_b from H_ab. A lone link's
+/// information comes out as the link's own: ((1 − shared)Σ + shared·Σ)⁻¹.
+/// Groups form among the links linearised together: marginalisation takes
+/// the leaving state's links, so each goes into the prior with its whole
+/// covariance, as if independent of the links that stay.
+struct SharedError {
+  Vec6 s = Vec6::Zero();
+  Mat6 sum_W = Mat6::Zero(), sum_covariance = Mat6::Zero();
+  int links = 0;
+  std::map<long, Mat6x15> B;
+
+  void add(const Vec6& r, const Mat6& W, const Mat6& covariance) {
+    s += W * r;
+    sum_W += W;
+    sum_covariance += covariance;
+    ++links;
+  }
+  void addJacobian(long block, const Mat6x15& WJ) {
+    const auto [it, inserted] = B.try_emplace(block, WJ);
+    if (!inserted) it->second += WJ;
+  }
+  void subtract(double shared, Normal* n) const {
+    const Mat6 shared_covariance = shared / links * sum_covariance;
+    const Mat6 M = shared_covariance.ldlt().solve(Mat6::Identity()) + sum_W;
+    const Eigen::LDLT<Mat6> M_ldlt(M);
+    const Vec6 Ms = M_ldlt.solve(s);
+    n->cost -= 0.5 * s.dot(Ms);
+    if (n->cost_only) return;
+    for (const auto& [a, Ba] : B) {
+      n->g.segment<15>(15 * a) -= Ba.transpose() * Ms;
+      const Eigen::Matrix<double, 6, 15> MBa = M_ldlt.solve(Ba);
+      for (const auto& [b, Bb] : B) n->H.block<15, 15>(15 * b, 15 * a) -= Bb.transpose() * MBa;
+    }
+  }
+};
 
 /// Where a state's Jacobians are evaluated: its first estimate (the prior's
 /// linearisation point) when it is in the prior and first-estimate Jacobians
@@ -220,6 +262,8 @@ void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::s
     if (fej) l.pre.residual(*jp[l.i], *jp[l.j], &Ji, &Jj);
     n->add<15>(r, l.information, {{slot.at(l.i), Ji}, {slot.at(l.j), Jj}});
   }
+  const double shared = o.visual_shared_fraction;
+  std::map<std::size_t, SharedError> by_reference;  // the links of each reference state, when they share an error
   for (const VisualLink& l : w.visual) {
     if (!use_visual(l)) continue;
     Mat6x15 Jr, Jn, Jc;
@@ -227,12 +271,24 @@ void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::s
     Mat6x15* Jc_here = w.calibration && here ? &Jc : nullptr;
     const Vec6 r = visualResidual(w, l, w.states[l.r].x, w.states[l.n].x, here ? &Jr : nullptr, here ? &Jn : nullptr, Jc_here);
     if (fej) visualResidual(w, l, *jp[l.r], *jp[l.n], &Jr, &Jn, w.calibration ? &Jc : nullptr);
-    const Mat6 W = huberWeightedInformation(l.link.information, r, o.huber_translation_m, o.huber_rotation_deg * kDegToRad);
+    // With a shared part, the information of the link's own part, (1 − shared)⁻¹ times the link's.
+    const Mat6 own = shared > 0 ? Mat6(l.link.information / (1.0 - shared)) : l.link.information;
+    const Mat6 W = huberWeightedInformation(own, r, o.huber_translation_m, o.huber_rotation_deg * kDegToRad);
     if (w.calibration)
       n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}, {calib_slot, Jc}});
     else
       n->add<6>(r, W, {{slot.at(l.r), Jr}, {slot.at(l.n), Jn}});
+    if (shared > 0) {
+      SharedError& e = by_reference[l.r];
+      e.add(r, W, l.link.information.ldlt().solve(Mat6::Identity()));
+      if (!n->cost_only) {
+        e.addJacobian(slot.at(l.r), W * Jr);
+        e.addJacobian(slot.at(l.n), W * Jn);
+        if (w.calibration) e.addJacobian(calib_slot, W * Jc);
+      }
+    }
   }
+  for (const auto& [reference, e] : by_reference) e.subtract(shared, n);
   if (priors == Priors::kBoth && w.calibration) addCalibrationPrior(*w.calibration, calib_slot, n);
   if (priors != Priors::kNone && !w.prior.empty()) {
     // ½δᵀHδ + bᵀδ at δ = x ⊟ x0: gradient b + Hδ, Hessian H (the Jacobian of
