@@ -146,10 +146,16 @@ struct Normal {
 /// the leaving state's links, so each goes into the prior with its whole
 /// covariance, as if independent of the links that stay.
 struct SharedError {
+  // A visual residual depends on a state's δp and δθ (columns 0-5) and on the
+  // calibration's time offset, rotation and translation (columns 0-6) only.
+  static constexpr int kColumns = 7;
+  static_assert(imu::kR + 3 <= kColumns && kCalibTranslation + 3 <= kColumns);
+  using Mat6x7 = Eigen::Matrix<double, 6, kColumns>;
+
   Vec6 s = Vec6::Zero();
   Mat6 sum_W = Mat6::Zero(), sum_covariance = Mat6::Zero();
   int links = 0;
-  std::map<long, Mat6x15> B;
+  std::map<long, Mat6x7> B;
 
   void add(const Vec6& r, const Mat6& W, const Mat6& covariance) {
     s += W * r;
@@ -157,7 +163,8 @@ struct SharedError {
     sum_covariance += covariance;
     ++links;
   }
-  void addJacobian(long block, const Mat6x15& WJ) {
+  void addJacobian(long block, const Mat6& W, const Mat6x15& J) {
+    const Mat6x7 WJ = W.lazyProduct(J.leftCols<kColumns>());
     const auto [it, inserted] = B.try_emplace(block, WJ);
     if (!inserted) it->second += WJ;
   }
@@ -169,9 +176,9 @@ struct SharedError {
     n->cost -= 0.5 * s.dot(Ms);
     if (n->cost_only) return;
     for (const auto& [a, Ba] : B) {
-      n->g.segment<15>(15 * a) -= Ba.transpose() * Ms;
-      const Eigen::Matrix<double, 6, 15> MBa = M_ldlt.solve(Ba);
-      for (const auto& [b, Bb] : B) n->H.block<15, 15>(15 * b, 15 * a) -= Bb.transpose() * MBa;
+      n->g.segment<kColumns>(15 * a) -= Ba.transpose() * Ms;
+      const Mat6x7 MBa = M_ldlt.solve(Ba);
+      for (const auto& [b, Bb] : B) n->H.block<kColumns, kColumns>(15 * b, 15 * a) -= Bb.transpose().lazyProduct(MBa);
     }
   }
 };
@@ -282,9 +289,9 @@ void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::s
       SharedError& e = by_reference[l.r];
       e.add(r, W, l.link.information.ldlt().solve(Mat6::Identity()));
       if (!n->cost_only) {
-        e.addJacobian(slot.at(l.r), W * Jr);
-        e.addJacobian(slot.at(l.n), W * Jn);
-        if (w.calibration) e.addJacobian(calib_slot, W * Jc);
+        e.addJacobian(slot.at(l.r), W, Jr);
+        e.addJacobian(slot.at(l.n), W, Jn);
+        if (w.calibration) e.addJacobian(calib_slot, W, Jc);
       }
     }
   }
