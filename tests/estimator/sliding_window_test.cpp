@@ -198,7 +198,9 @@ TEST_P(SharedErrorSolve, EndsWhereTheCostIsFlat) {
   EstimatorOptions o = exactOptions();
   o.visual_shared_fraction = 0.6;
   const double h = 1e-6;
-  const auto central = [&](const Window& plus, const Window& minus) { return (windowCost(plus, o) - windowCost(minus, o)) / (2 * h); };
+  const auto central = [&](const Window& plus, const Window& minus) {
+    return (windowCost(plus, o) - windowCost(minus, o)) / (2 * h);
+  };
   const auto gradientNorm = [&](const Window& at) {
     double sum = 0.0;
     for (int d = 0; d < 15; ++d) {
