@@ -94,6 +94,8 @@ TEST(Config, ErrorsNameFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(errorOf("alignment:\n  max_iterations_per_level: 0\n").find("alignment.max_iterations_per_level: must be in [1, 100] (got 0)"),
             std::string::npos);
+  EXPECT_NE(errorOf("estimator:\n  window_size: 30\n  visual_shared_fraction: 1\n").find(":3: invalid value: estimator.visual_shared_fraction"),
+            std::string::npos);
   EXPECT_NE(errorOf("dataset: 5\n").find("must be a mapping"), std::string::npos);
   EXPECT_NE(errorOf("dataset:\n  imu_gap_warning_s: [1\n").find("invalid YAML"), std::string::npos);
   EXPECT_NE(errorOf("eval:\n  association_tolerance_s: .nan\n").find("expected a number"), std::string::npos);

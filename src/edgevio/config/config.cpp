@@ -61,6 +61,9 @@ void readSection(const YAML::Node& node, const std::string& section, const std::
     options::Value v;
     std::string expected = toValue(n, &v) ? f.parse(*options, v) : "a value";
     if (!expected.empty()) throw InputError(path, yamlLine(n), "'" + section + "." + f.key + "': expected " + expected);
+    // Its own bounds here, where the line is known; rules across keys are Config::validate's.
+    if (const std::string why = f.check(*options); !why.empty())
+      throw InputError(path, yamlLine(n), "invalid value: " + section + "." + f.key + ": " + why);
   }
   if (node.IsMap()) rejectUnknown(node, known, path, "key", section + ".");
 }
