@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 
@@ -263,6 +264,47 @@ TEST(SlidingWindow, MarginalisingTheOldestStateKeepsTheSolution) { expectMargina
 TEST(SlidingWindow, WithFirstEstimateJacobiansMarginalisingKeepsTheSolution) {
   expectMarginalizationEquivalent(3, true);
   expectMarginalizationEquivalent(0, true);
+}
+
+/// Marginalising state k of the synthetic window with and without
+/// front_marginalization_drops_links, and, with the option off, a copy of the
+/// window whose links measured in k are removed beforehand.
+struct DroppedLinks {
+  Window dropping, keeping, without_them;
+};
+
+DroppedLinks marginalizeDroppingLinks(std::size_t k) {
+  std::vector<NavState> truth;
+  Window w = syntheticWindow(&truth);
+  EstimatorOptions keep = exactOptions(), drop = exactOptions();
+  drop.front_marginalization_drops_links = true;
+  solve(&w, keep);
+  DroppedLinks d{w, w, w};
+  auto& v = d.without_them.visual;
+  v.erase(std::remove_if(v.begin(), v.end(), [k](const VisualLink& l) { return l.n == k; }), v.end());
+  marginalize(&d.dropping, k, drop);
+  marginalize(&d.keeping, k, keep);
+  marginalize(&d.without_them, k, keep);
+  return d;
+}
+
+TEST(SlidingWindow, FrontMarginalisationDropsOnlyTheLinksMeasuredInTheFrame) {
+  // State 3 is measured from 0 and 2 and is the reference of 3 -> 4: the
+  // prior must be the one left without the first two links, bit for bit,
+  // and must differ from the one that folds them in.
+  const DroppedLinks front = marginalizeDroppingLinks(3);
+  EXPECT_EQ(front.dropping.prior.states, front.without_them.prior.states);
+  EXPECT_EQ(front.dropping.prior.H, front.without_them.prior.H);
+  EXPECT_EQ(front.dropping.prior.b, front.without_them.prior.b);
+  EXPECT_EQ(front.dropping.visual.size(), front.keeping.visual.size());
+  ASSERT_EQ(front.dropping.prior.H.rows(), front.keeping.prior.H.rows());
+  // The links 0 -> 3 and 2 -> 3 are 3 mm / 3 mrad: their information is
+  // ~1e5, far above the rounding of the rest.
+  EXPECT_GT((front.dropping.prior.H - front.keeping.prior.H).norm(), 1e3);
+  // The oldest state is back-marginalised: everything is folded either way.
+  const DroppedLinks back = marginalizeDroppingLinks(0);
+  EXPECT_EQ(back.dropping.prior.H, back.keeping.prior.H);
+  EXPECT_EQ(back.dropping.prior.b, back.keeping.prior.b);
 }
 
 /// The solved window is the minimum of the cost over every state, so also

@@ -27,6 +27,10 @@ EDGEVIO_OPTIONS_TABLE(EstimatorOptions,
            "front marginalisation when |dp|/this + angle/front_rotation_deg < 1 (the second-newest state against the keyframe)",
            above(0)),
     number("front_rotation_deg", &S::front_rotation_deg, 10.0, "deg", "rotation scale of that distance", above(0)),
+    number("front_marginalization_drops_links", &S::front_marginalization_drops_links, false, "-",
+           "front marginalisation folds the inertial links of the frame it removes into the prior and drops the visual "
+           "links measured in it (VINS-Mono's choice): they share their keyframe's error with the links that stay, which "
+           "the prior would otherwise take as independent information; false: it folds every link (METHOD.md §5)"),
     number("visual_covariance_scale", &S::visual_covariance_scale, 10.0, "-",
            "a visual link's covariance is the alignment's (J'WJ)^-1 times this", above(0)),
     number("visual_shared_fraction", &S::visual_shared_fraction, 0.0, "-",

@@ -371,8 +371,10 @@ void reanchor(const NavState& oldest_before, Window* w) {
   }
 }
 
-/// State k first, then every state that shares a link with it, then (`with_prior`) those of the old prior.
-std::vector<std::size_t> statesInvolvedWith(const Window& w, std::size_t k, bool with_prior) {
+/// State k first, then every state that shares an inertial link or a visual
+/// link `use_visual` takes with it, then (`with_prior`) those of the old prior.
+template <class UseVisual>
+std::vector<std::size_t> statesInvolvedWith(const Window& w, std::size_t k, bool with_prior, UseVisual use_visual) {
   std::vector<std::size_t> involved = {k};
   const auto addState = [&](std::size_t i) {
     if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
@@ -380,7 +382,7 @@ std::vector<std::size_t> statesInvolvedWith(const Window& w, std::size_t k, bool
   for (const auto& l : w.inertial)
     if (l.i == k || l.j == k) addState(l.i == k ? l.j : l.i);
   for (const auto& l : w.visual)
-    if (l.r == k || l.n == k) addState(l.r == k ? l.n : l.r);
+    if ((l.r == k || l.n == k) && use_visual(l)) addState(l.r == k ? l.n : l.r);
   if (with_prior)
     for (std::size_t i : w.prior.states) addState(i);
   return involved;
@@ -448,7 +450,7 @@ SolveSummary solveNewest(Window* w, const EstimatorOptions& o) {
   // (after the second-newest was marginalised), with the calibration last.
   const auto touches = [k](std::size_t a, std::size_t b) { return a == k || b == k; };
   const bool in_prior = std::find(w->prior.states.begin(), w->prior.states.end(), k) != w->prior.states.end();
-  const std::vector<std::size_t> involved = statesInvolvedWith(*w, k, in_prior);
+  const std::vector<std::size_t> involved = statesInvolvedWith(*w, k, in_prior, [](const VisualLink&) { return true; });
   std::map<std::size_t, long> slot;
   for (std::size_t a = 0; a < involved.size(); ++a) slot[involved[a]] = static_cast<long>(a);
   const auto blocks = slot.size() + (w->calibration ? 1 : 0);
@@ -484,15 +486,17 @@ SolveSummary solveNewest(Window* w, const EstimatorOptions& o) {
 namespace {
 
 /// The prior left by marginalising involved[0]: the Schur complement of the
-/// normal equations of its links and the old prior (eqs 20-21).
-MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involved, const EstimatorOptions& o) {
+/// normal equations of its inertial links, the visual links `folded` takes
+/// and the old prior (eqs 20-21).
+template <class Folded>
+MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involved, Folded folded, const EstimatorOptions& o) {
   const std::size_t k = involved.front();
   std::map<std::size_t, long> slot;
   for (std::size_t a = 0; a < involved.size(); ++a) slot[involved[a]] = static_cast<long>(a);
   // The calibration block, when the window has one, is last and stays in the prior.
   Normal n(involved.size() + (w.calibration ? 1 : 0));
   linearize(w, o, slot, static_cast<long>(involved.size()), Priors::kMarginal, [&](const InertialLink& l) { return l.i == k || l.j == k; },
-            [&](const VisualLink& l) { return l.r == k || l.n == k; }, &n);
+            [&](const VisualLink& l) { return (l.r == k || l.n == k) && folded(l); }, &n);
   // Schur complement on the first 15 rows/columns (state k).
   const long m = 15, r = n.H.rows() - m;
   const MatrixXd Hmm = n.H.topLeftCorner(m, m), Hrm = n.H.bottomLeftCorner(r, m), Hrr = n.H.bottomRightCorner(r, r);
@@ -531,7 +535,13 @@ MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involv
 }  // namespace
 
 void marginalize(Window* w, std::size_t k, const EstimatorOptions& o) {
-  MarginalPrior prior = schurPrior(*w, statesInvolvedWith(*w, k, true), o);
+  // Front marginalisation (any state but the oldest) may drop the links
+  // measured in state k: from a reference that stays, they share its error
+  // with the links that stay and come, so folding them in as independent
+  // would count that error again in the prior.
+  const bool drop_measured = o.front_marginalization_drops_links && k > 0;
+  const auto folded = [k, drop_measured](const VisualLink& l) { return !(drop_measured && l.n == k); };
+  MarginalPrior prior = schurPrior(*w, statesInvolvedWith(*w, k, true, folded), folded, o);
   // Remove state k and every link that touched it; renumber.
   const auto renumber = [k](std::size_t i) { return i > k ? i - 1 : i; };
   std::vector<InertialLink> inertial;
