@@ -135,6 +135,29 @@ double consecutiveCorrelation(const std::vector<Link>& links, int k) {
   return sxx > 0 && syy > 0 ? sxy / std::sqrt(sxx * syy) : std::nan("");
 }
 
+/// Correlation of component k between the mean errors of consecutive
+/// keyframes' links (keyframes with two links or more), uncentred: an error
+/// that every keyframe hands on to the next, a bias among them, counts.
+double nextKeyframeCorrelation(const std::map<std::int64_t, std::vector<const Link*>>& groups, int k) {
+  double sxy = 0, sxx = 0, syy = 0, previous = std::nan("");
+  for (const auto& [t, links] : groups) {
+    if (links.size() < 2) {
+      previous = std::nan("");
+      continue;
+    }
+    double mean = 0;
+    for (const Link* l : links) mean += l->normalised[k];
+    mean /= static_cast<double>(links.size());
+    if (!std::isnan(previous)) {
+      sxy += previous * mean;
+      sxx += previous * previous;
+      syy += mean * mean;
+    }
+    previous = mean;
+  }
+  return sxx > 0 && syy > 0 ? sxy / std::sqrt(sxx * syy) : std::nan("");
+}
+
 /// Where the links' error comes from, as one markdown row: the NEES by the
 /// time from the keyframe; the NEES of the difference of consecutive links
 /// to one keyframe against Σ_n + Σ_m (6 if their errors are independent,
@@ -142,7 +165,8 @@ double consecutiveCorrelation(const std::vector<Link>& links, int k) {
 /// true translation read as a scale error δ = (Δt·t)/|t|² (a keyframe's depth
 /// error would scale all its links' translations alike): the share of the
 /// squared translation error it explains (1/3 for an error of no preferred
-/// direction) and the intraclass correlation of δ by keyframe.
+/// direction) and the intraclass correlation of δ by keyframe; the
+/// correlation of consecutive keyframes' mean errors (translation, rotation).
 std::string sharedPartRow(const std::string& name, const std::vector<Link>& links) {
   std::string row = "| " + name + " |";
   const double bins[] = {0.0, 0.1, 0.2, 0.4, 1e9};
@@ -179,9 +203,16 @@ std::string sharedPartRow(const std::string& name, const std::vector<Link>& link
   }
   std::map<std::int64_t, std::vector<const Link*>> scale_by_keyframe;
   for (const Link& l : scales) scale_by_keyframe[l.t_ref_ns].push_back(&l);
-  char tail[128];
-  std::snprintf(tail, sizeof(tail), " %.2f (%zu) | %.2f | %.2f |", differences ? difference_nees / static_cast<double>(differences) : std::nan(""),
-                differences, all > 0 ? along / all : std::nan(""), intraclassCorrelation(scale_by_keyframe, 0));
+  std::map<std::int64_t, std::vector<const Link*>> by_keyframe;
+  for (const Link& l : links) by_keyframe[l.t_ref_ns].push_back(&l);
+  const auto next = [&](int first) {
+    return (nextKeyframeCorrelation(by_keyframe, first) + nextKeyframeCorrelation(by_keyframe, first + 1) +
+            nextKeyframeCorrelation(by_keyframe, first + 2)) / 3;
+  };
+  char tail[160];
+  std::snprintf(tail, sizeof(tail), " %.2f (%zu) | %.2f | %.2f | %.2f %.2f |",
+                differences ? difference_nees / static_cast<double>(differences) : std::nan(""), differences,
+                all > 0 ? along / all : std::nan(""), intraclassCorrelation(scale_by_keyframe, 0), next(0), next(3));
   return row + tail;
 }
 
@@ -324,9 +355,11 @@ int main(int argc, char** argv) {
   std::printf("\nWhere the error comes from: NEES (links) by the time from the keyframe; NEES of the difference of consecutive "
               "links to one keyframe against the sum of their covariances (6 if independent); the translation error along the "
               "true translation as a scale error: its share of the squared error (1/3 if of no preferred direction) and its "
-              "intraclass correlation by keyframe\n\n");
-  std::printf("| dataset | < 0.1 s | 0.1-0.2 s | 0.2-0.4 s | >= 0.4 s | consecutive differences | scale share | scale ICC |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+              "intraclass correlation by keyframe; the correlation of consecutive keyframes' mean normalised errors, "
+              "uncentred (0 if each keyframe's error is its own)\n\n");
+  std::printf("| dataset | < 0.1 s | 0.1-0.2 s | 0.2-0.4 s | >= 0.4 s | consecutive differences | scale share | scale ICC | "
+              "next keyframe t, r |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
   for (const std::string& row : shared_part_rows) std::printf("%s\n", row.c_str());
   return 0;
 }
