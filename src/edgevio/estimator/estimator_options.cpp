@@ -33,10 +33,6 @@ EDGEVIO_OPTIONS_TABLE(EstimatorOptions,
            "the prior would otherwise take as independent information; false: it folds every link (METHOD.md §5)"),
     number("visual_covariance_scale", &S::visual_covariance_scale, 10.0, "-",
            "a visual link's covariance is the alignment's (J'WJ)^-1 times this", above(0)),
-    number("visual_depth_error_fraction", &S::visual_depth_error_fraction, 0.0, "-",
-           "relative depth error of a keyframe: a visual link's translation gets a variance of (this x its translation)^2 "
-           "per axis beyond the alignment's, which holds the edges' noise only; 0: none",
-           closed(0, 1)),
     number("visual_shared_fraction", &S::visual_shared_fraction, 0.0, "-",
            "the part of a visual link's covariance that every link from the same reference keyframe shares (its depth and "
            "edges): the window weighs those links jointly, as one error common to all plus one of each; 0: independent links",

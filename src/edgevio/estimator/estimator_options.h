@@ -8,7 +8,7 @@ struct EstimatorOptions {
   int window_size, max_iterations, realtime_pose_iterations;
   double huber_translation_m, huber_rotation_deg, damping, external_check_rotation_deg, external_check_translation_m,
       loop_check_rotation_deg, loop_check_translation_m, front_translation_m, front_rotation_deg,
-      visual_covariance_scale, visual_depth_error_fraction, visual_shared_fraction, imu_noise_inflation, gyro_bias_walk_inflation,
+      visual_covariance_scale, visual_shared_fraction, imu_noise_inflation, gyro_bias_walk_inflation,
       accel_bias_walk_inflation, max_imu_gap_s, repropagate_accel_bias, repropagate_gyro_bias, init_tilt_sigma_deg, init_velocity_sigma, init_accel_bias_sigma,
       init_gyro_bias_sigma, reset_accel_bias, reset_gyro_bias, reset_velocity, time_offset_sigma_ms,
       cam_imu_rotation_sigma_deg, cam_imu_translation_sigma_m;

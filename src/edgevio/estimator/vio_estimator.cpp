@@ -134,12 +134,7 @@ void VioEstimator::addStateWithoutImu(std::int64_t t_ns, const SE3& T_w_b) {
 bool VioEstimator::addVisualLink(std::size_t r, std::size_t n, const SE3& T_nr, const Mat6& covariance) {
   RelativePoseLink link;
   link.T_nr = T_nr;
-  Mat6 P = options_.visual_covariance_scale * covariance;
-  // The keyframe's depth error ε (relative) moves a point's projection by
-  // ε times the camera's translation since the keyframe, so the link's
-  // translation takes an error of about ε|t| the edges' covariance misses.
-  const double depth_error_m = options_.visual_depth_error_fraction * T_nr.translation().norm();
-  if (depth_error_m > 0) P.topLeftCorner<3, 3>().diagonal().array() += depth_error_m * depth_error_m;
+  const Mat6 P = options_.visual_covariance_scale * covariance;
   link.information = P.ldlt().solve(Mat6::Identity());
   link.information = 0.5 * (link.information + link.information.transpose());
   if (!link.information.allFinite()) return false;
