@@ -144,7 +144,8 @@ struct Normal {
 /// information comes out as the link's own: ((1 − shared)Σ + shared·Σ)⁻¹.
 /// Groups form among the links linearised together: marginalisation takes
 /// the leaving state's links, so each goes into the prior with its whole
-/// covariance, as if independent of the links that stay.
+/// covariance, as if independent of the links that stay (unless
+/// front_marginalization_drops_links drops those of a frame removed in front).
 struct SharedError {
   // A visual residual depends on a state's δp and δθ (columns 0-5) and on the
   // calibration's time offset, rotation and translation (columns 0-6) only.

@@ -128,7 +128,9 @@ SolveSummary solve(Window* w, const EstimatorOptions& o);
 /// (estimator.realtime_pose_iterations: 0).
 SolveSummary solveNewest(Window* w, const EstimatorOptions& o);
 
-/// Removes state `index`, folding its links and the old prior into a new prior.
+/// Removes state `index`, folding its links and the old prior into a new
+/// prior; with o.front_marginalization_drops_links, for any state but the
+/// oldest, the visual links measured in it are dropped instead of folded.
 void marginalize(Window* w, std::size_t index, const EstimatorOptions& o);
 
 }  // namespace edgevio::estimator
