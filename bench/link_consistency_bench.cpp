@@ -167,7 +167,8 @@ double nextKeyframeCorrelation(const std::map<std::int64_t, std::vector<const Li
 /// squared translation error it explains (1/3 for an error of no preferred
 /// direction) and the intraclass correlation of δ by keyframe; the
 /// correlation of consecutive keyframes' mean errors (translation, rotation).
-std::string sharedPartRow(const std::string& name, const std::vector<Link>& links) {
+std::string sharedPartRow(const std::string& name, const std::vector<Link>& links,
+                          const std::map<std::int64_t, std::vector<const Link*>>& by_keyframe) {
   std::string row = "| " + name + " |";
   const double bins[] = {0.0, 0.1, 0.2, 0.4, 1e9};
   for (int b = 0; b < 4; ++b) {
@@ -203,8 +204,6 @@ std::string sharedPartRow(const std::string& name, const std::vector<Link>& link
   }
   std::map<std::int64_t, std::vector<const Link*>> scale_by_keyframe;
   for (const Link& l : scales) scale_by_keyframe[l.t_ref_ns].push_back(&l);
-  std::map<std::int64_t, std::vector<const Link*>> by_keyframe;
-  for (const Link& l : links) by_keyframe[l.t_ref_ns].push_back(&l);
   const auto next = [&](int first) {
     return (nextKeyframeCorrelation(by_keyframe, first) + nextKeyframeCorrelation(by_keyframe, first + 1) +
             nextKeyframeCorrelation(by_keyframe, first + 2)) / 3;
@@ -291,7 +290,7 @@ void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const st
               (consecutiveCorrelation(links, 0) + consecutiveCorrelation(links, 1) + consecutiveCorrelation(links, 2)) / 3,
               (consecutiveCorrelation(links, 3) + consecutiveCorrelation(links, 4) + consecutiveCorrelation(links, 5)) / 3,
               inertial ? inertial_nees / static_cast<double>(inertial) : std::nan(""), median(inertial_each));
-  *shared_part_row = sharedPartRow(name, links);
+  *shared_part_row = sharedPartRow(name, links, by_keyframe);
   std::fflush(stdout);
   totals->links += links.size();
   totals->nees += nees;

@@ -486,12 +486,12 @@ SolveSummary solveNewest(Window* w, const EstimatorOptions& o) {
 
 namespace {
 
-/// The prior left by marginalising involved[0]: the Schur complement of the
+/// The prior left by marginalising state k: the Schur complement of the
 /// normal equations of its inertial links, the visual links `folded` takes
-/// and the old prior (eqs 20-21).
+/// and the old prior (eqs 20-21), over the states those involve.
 template <class Folded>
-MarginalPrior schurPrior(const Window& w, const std::vector<std::size_t>& involved, Folded folded, const EstimatorOptions& o) {
-  const std::size_t k = involved.front();
+MarginalPrior schurPrior(const Window& w, std::size_t k, Folded folded, const EstimatorOptions& o) {
+  const std::vector<std::size_t> involved = statesInvolvedWith(w, k, true, folded);
   std::map<std::size_t, long> slot;
   for (std::size_t a = 0; a < involved.size(); ++a) slot[involved[a]] = static_cast<long>(a);
   // The calibration block, when the window has one, is last and stays in the prior.
@@ -542,7 +542,7 @@ void marginalize(Window* w, std::size_t k, const EstimatorOptions& o) {
   // would count that error again in the prior.
   const bool drop_measured = o.front_marginalization_drops_links && k > 0;
   const auto folded = [k, drop_measured](const VisualLink& l) { return !(drop_measured && l.n == k); };
-  MarginalPrior prior = schurPrior(*w, statesInvolvedWith(*w, k, true, folded), folded, o);
+  MarginalPrior prior = schurPrior(*w, k, folded, o);
   // Remove state k and every link that touched it; renumber.
   const auto renumber = [k](std::size_t i) { return i > k ? i - 1 : i; };
   std::vector<InertialLink> inertial;
