@@ -1,5 +1,6 @@
 // `edgevio simulate` end to end on short sequences: a readable ASL folder,
-// byte-identical output for a seed, skips, a replayed real IMU log.
+// byte-identical output for a seed, skips, a replayed real IMU log, the
+// world brought back from the folder's simulation.yaml.
 #include "edgevio/sim/simulator.h"
 
 #include <gtest/gtest.h>
@@ -13,11 +14,15 @@
 #include "common/sim_fixture.h"
 #include "common/test_support.h"
 #include "edgevio/common/error.h"
+#include "edgevio/config/config.h"
 #include "edgevio/geometry/types.h"
 #include "edgevio/io/calibration_io.h"
 #include "edgevio/io/euroc_dataset.h"
 #include "edgevio/io/imu_io.h"
 #include "edgevio/io/trajectory_io.h"
+#include "edgevio/sim/random.h"
+#include "edgevio/sim/renderer.h"
+#include "edgevio/sim/sensor_model.h"
 
 namespace edgevio::sim {
 namespace {
@@ -123,6 +128,57 @@ TEST(Simulator, ReplaysARealImuLogAndKeepsItsBiases) {
   }
   const io::Trajectory gt = io::readTrajectory(dir.path() + "/mav0/state_groundtruth_estimate0/data.csv");
   EXPECT_TRUE(gt.front().hasVelocityAndBias());
+}
+
+/// Camera 0's image at t rendered from `world` as simulate renders it (no
+/// blur, no exposure changes).
+cv::Mat renderLeft(const SimulatedWorld& world, const SimOptions& o, std::uint64_t seed, std::int64_t t) {
+  cv::Mat radiance;
+  render(world.scene, RayTable(world.rig.cam[0]), world.motion.pose(t) * world.rig.T_b_c[0], RenderOptions{}, &radiance);
+  const SensorEffects fx{o.exposure_gain, o.vignetting, o.image_noise_sigma};
+  return sensorImage(radiance, world.rig.cam[0], fx, hashCombine(seed, static_cast<std::uint64_t>(t) * 2));
+}
+
+TEST(Simulator, ItsRecordBringsBackTheWorldItsImagesWereRenderedFrom) {
+  TempDir dir;
+  const SimRequest r = test::shortScenario(dir.path());
+  SimOptions o = test::fastSimOptions();
+  o.scene.texture_tile_m = 3.0;  // not the default: the record must carry the options
+  simulate(r, o);
+
+  const SimulationRecord record = loadSimulationRecord(dir.path());
+  EXPECT_EQ(record.request.scenario, r.scenario);
+  EXPECT_EQ(record.request.seed, r.seed);
+  EXPECT_EQ(record.request.start_s, r.start_s);
+  EXPECT_EQ(record.request.duration_s, r.duration_s);
+  EXPECT_EQ(record.options.scene.texture_tile_m, 3.0);
+  EXPECT_EQ(record.options.scene.texture_log2_size, 8);
+
+  // A frame rendered again from the world the record brings back is, byte for
+  // byte, the folder's image; another seed's world (scene and noise) is not.
+  io::EurocDataset d(dir.path(), io::DatasetOptions{});
+  const std::size_t i = 7;
+  const auto pair = d.loadStereo(i);
+  ASSERT_TRUE(pair.has_value());
+  const std::int64_t t = d.stereoPairs()[i].t_ns;
+  const SimulatedWorld world = simulatedWorld(record.request, record.options);
+  EXPECT_EQ(cv::norm(renderLeft(world, record.options, record.request.seed, t), pair->left, cv::NORM_INF), 0.0);
+  SimRequest other = record.request;
+  other.seed += 1;
+  EXPECT_GT(cv::norm(renderLeft(simulatedWorld(other, record.options), record.options, other.seed, t), pair->left,
+                     cv::NORM_L1) / static_cast<double>(pair->left.total()), 5.0);
+
+  // A run to the trajectory's end is recorded as duration nan; a bad value names the file and line.
+  const fs::path yaml = fs::path(dir.path()) / "simulation.yaml";
+  std::string text = test::readFile(yaml.string());
+  const std::size_t at = text.find("duration_s: ");
+  text.replace(at, text.find('\n', at) - at, "duration_s: nan");
+  std::ofstream(yaml) << text;
+  EXPECT_TRUE(std::isnan(loadSimulationRecord(dir.path()).request.duration_s));
+  const std::size_t seed_at = text.find("seed: ");
+  text.replace(seed_at, text.find('\n', seed_at) - seed_at, "seed: three");
+  std::ofstream(yaml) << text;
+  test::expectInputError([&] { loadSimulationRecord(dir.path()); }, {"simulation.yaml:6", "'seed': expected a number"});
 }
 
 }  // namespace

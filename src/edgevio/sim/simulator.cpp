@@ -86,6 +86,43 @@ double knotSpacing(const io::Trajectory& samples, double knot_dt_s) {
 
 }  // namespace
 
+SimulatedWorld simulatedWorld(const SimRequest& req, const SimOptions& options) {
+  SimulatedWorld w;
+  w.rig = req.calib.empty() ? io::eurocDefaultRig() : io::loadCalibration(req.calib);
+
+  const double margin_s = 4 * options.knot_dt_s;  // spline support beyond the span
+  if (!req.scenario.empty()) {
+    const double duration = std::isnan(req.duration_s) ? options.scenario_duration_s : req.duration_s;
+    if (!(duration > 0)) throw InputError("--duration must be > 0");
+    w.samples = scenarioSamples(req.scenario, req.start_s + duration + margin_s, options.static_start_s, w.rig.T_b_c[0]);
+    w.source = "scenario " + req.scenario;
+    w.begin_ns = kScenarioStartNs + toNanoseconds(req.start_s);
+    w.end_ns = w.begin_ns + toNanoseconds(duration);
+  } else {
+    w.samples = io::readTrajectory(req.trajectory_file);
+    w.source = req.trajectory_file;
+    w.position_steps_removed =
+        removePositionSteps(w.samples, options.trajectory_max_accel_mps2, options.trajectory_step_spread_s);
+    w.begin_ns = w.samples.front().t_ns + toNanoseconds(req.start_s);
+    w.end_ns = std::isnan(req.duration_s) ? w.samples.back().t_ns : w.begin_ns + toNanoseconds(req.duration_s);
+    if (w.begin_ns >= w.samples.back().t_ns || w.end_ns > w.samples.back().t_ns)
+      throw InputError(w.source, 0, "the trajectory covers [" + seconds(w.samples.front().t_ns) + ", " +
+                                        seconds(w.samples.back().t_ns) + "] s but [" + seconds(w.begin_ns) + ", " +
+                                        seconds(w.end_ns) + "] s was requested (check --start and --duration)");
+  }
+  constexpr double kMinDuration = 0.5;
+  if (toSeconds(w.end_ns - w.begin_ns) < kMinDuration)
+    throw InputError(w.source, 0, "too short: the requested span is " + seconds(w.end_ns - w.begin_ns) +
+                                      " s, at least " + std::to_string(kMinDuration) + " s are needed");
+  w.knot_dt_s = knotSpacing(w.samples, options.knot_dt_s);
+  w.motion = fitSpline(w.samples, w.begin_ns, w.end_ns, w.knot_dt_s, options.max_trajectory_gap_s, w.source);
+
+  std::vector<Vec3> path;
+  for (std::int64_t t = w.begin_ns; t <= w.end_ns; t += 20000000) path.push_back(w.motion.pose(t).translation());
+  w.scene = buildScene(path, options.scene, req.seed);
+  return w;
+}
+
 SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimProgress& progress) {
   const auto wall_start = std::chrono::steady_clock::now();
   const std::string invalid = options::validate(options);
@@ -98,44 +135,13 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   if (!(req.blur_ms >= 0.0 && req.blur_ms < 200.0)) throw InputError("--blur-ms must be in [0, 200)");
   if (!(req.start_s >= 0.0)) throw InputError("--start must be >= 0");
 
-  const camera::StereoRig rig = req.calib.empty() ? io::eurocDefaultRig() : io::loadCalibration(req.calib);
-
-  // 1. The motion.
-  io::Trajectory samples;
-  std::string source;
-  int position_steps = 0;
-  std::int64_t begin_ns = 0, end_ns = 0;
-  const double margin_s = 4 * options.knot_dt_s;  // spline support beyond the span
-  if (!req.scenario.empty()) {
-    const double duration = std::isnan(req.duration_s) ? options.scenario_duration_s : req.duration_s;
-    if (!(duration > 0)) throw InputError("--duration must be > 0");
-    samples = scenarioSamples(req.scenario, req.start_s + duration + margin_s, options.static_start_s, rig.T_b_c[0]);
-    source = "scenario " + req.scenario;
-    begin_ns = kScenarioStartNs + toNanoseconds(req.start_s);
-    end_ns = begin_ns + toNanoseconds(duration);
-  } else {
-    samples = io::readTrajectory(req.trajectory_file);
-    source = req.trajectory_file;
-    position_steps = removePositionSteps(samples, options.trajectory_max_accel_mps2, options.trajectory_step_spread_s);
-    begin_ns = samples.front().t_ns + toNanoseconds(req.start_s);
-    end_ns = std::isnan(req.duration_s) ? samples.back().t_ns
-                                        : begin_ns + toNanoseconds(req.duration_s);
-    if (begin_ns >= samples.back().t_ns || end_ns > samples.back().t_ns)
-      throw InputError(source, 0, "the trajectory covers [" + seconds(samples.front().t_ns) + ", " +
-                                      seconds(samples.back().t_ns) + "] s but [" + seconds(begin_ns) + ", " +
-                                      seconds(end_ns) + "] s was requested (check --start and --duration)");
-  }
-  constexpr double kMinDuration = 0.5;
-  if (toSeconds(end_ns - begin_ns) < kMinDuration)
-    throw InputError(source, 0, "too short: the requested span is " + seconds(end_ns - begin_ns) + " s, at least " +
-                                    std::to_string(kMinDuration) + " s are needed");
-  const double knot_dt_s = knotSpacing(samples, options.knot_dt_s);
-  const SplineTrajectory spline = fitSpline(samples, begin_ns, end_ns, knot_dt_s, options.max_trajectory_gap_s, source);
-
-  // 2. The world around it.
-  std::vector<Vec3> path;
-  for (std::int64_t t = begin_ns; t <= end_ns; t += 20000000) path.push_back(spline.pose(t).translation());
-  const Scene scene = buildScene(path, options.scene, req.seed);
+  // 1-2. The motion and the world around it.
+  const SimulatedWorld world = simulatedWorld(req, options);
+  const camera::StereoRig& rig = world.rig;
+  const io::Trajectory& samples = world.samples;
+  const std::int64_t begin_ns = world.begin_ns, end_ns = world.end_ns;
+  const SplineTrajectory& spline = world.motion;
+  const Scene& scene = world.scene;
 
   // 3. The IMU.
   SynthesizedImu imu;
@@ -277,8 +283,8 @@ SimSummary simulate(const SimRequest& req, const SimOptions& options, const SimP
   }
   writeSimulationYaml((fs::path(req.out_dir) / "simulation.yaml").string(), req, options);
   summary.imu_samples = imu.samples.size();
-  summary.position_steps_removed = position_steps;
-  summary.knot_dt_s = knot_dt_s;
+  summary.position_steps_removed = world.position_steps_removed;
+  summary.knot_dt_s = world.knot_dt_s;
   summary.duration_s = toSeconds(end_ns - begin_ns);
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return summary;

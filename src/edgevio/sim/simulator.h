@@ -13,8 +13,12 @@
 #include <string>
 #include <vector>
 
+#include "edgevio/camera/calibration.h"
+#include "edgevio/io/trajectory_io.h"
 #include "edgevio/sim/faults.h"
+#include "edgevio/sim/scene.h"
 #include "edgevio/sim/sim_options.h"
+#include "edgevio/sim/spline_trajectory.h"
 
 namespace edgevio::sim {
 
@@ -48,6 +52,24 @@ struct SimSummary {
   double render_s = 0.0;          ///< time spent ray casting
   double write_s = 0.0;           ///< time spent encoding and writing images
 };
+
+/// What a simulation's images are rendered from: the rig, the motion and the
+/// scene. The same request and options give the same world, so a render
+/// folder's simulation.yaml (config/simulation_record.h) brings it back, to
+/// render what the files do not hold, such as the true depth at any pose.
+struct SimulatedWorld {
+  camera::StereoRig rig;
+  io::Trajectory samples;  ///< the trajectory file's (position steps removed) or the scenario's
+  std::string source;      ///< the file, or "scenario NAME", for messages
+  int position_steps_removed = 0;
+  std::int64_t begin_ns = 0, end_ns = 0;  ///< the rendered span
+  double knot_dt_s = 0.0;
+  SplineTrajectory motion;  ///< the body's true pose at any time of the span
+  Scene scene;
+};
+
+/// Throws InputError for bad input (files, spans, scene), naming the file.
+SimulatedWorld simulatedWorld(const SimRequest& request, const SimOptions& options);
 
 /// Progress callback: (frames done, frames total).
 using SimProgress = std::function<void(std::size_t, std::size_t)>;
