@@ -24,6 +24,7 @@
 #include "edgevio/io/trajectory_io.h"
 #include "edgevio/pipeline/mode.h"
 #include "edgevio/sim/simulator.h"
+#include "edgevio/tracking/edge_tracker.h"
 
 namespace edgevio::pipeline {
 namespace {
@@ -215,6 +216,42 @@ TEST(Run, AlignmentPicturesAreKeptForEventfulFramesAndEveryTenthAndChangeNothing
   for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(with.file("alignment"))) ++files;
   EXPECT_EQ(files, expected);
   std::printf("%zu frames, %zu keyframes, %zu alignment pictures\n", index, keyframes, files);
+}
+
+/// The edge tracker, counting what the pipeline asks of it.
+class CountingTracker final : public tracking::Tracker {
+ public:
+  CountingTracker(const camera::StereoRectifier& rect, const Config& c, std::size_t* keyframes, std::size_t* tracks)
+      : inner_(rect, c.vision, c.alignment, c.tracking), keyframes_(keyframes), tracks_(tracks) {}
+  std::shared_ptr<const tracking::KeyframeData> makeKeyframe(tracking::PreparedFrame frame) const override {
+    ++*keyframes_;
+    return inner_.makeKeyframe(std::move(frame));
+  }
+  tracking::Track track(const tracking::PreparedFrame& frame, const tracking::KeyframeData& keyframe,
+                        const geometry::SE3& T_w_b_keyframe, const tracking::Prediction& prediction) const override {
+    ++*tracks_;
+    return inner_.track(frame, keyframe, T_w_b_keyframe, prediction);
+  }
+
+ private:
+  tracking::EdgeTracker inner_;
+  std::size_t *keyframes_, *tracks_;
+};
+
+TEST(Run, TheRequestsTrackerIsTheFrontEnd) {
+  // A diagnostic's tracker (bench/link_consistency_bench's true depths) sees
+  // every keyframe and frame; around the edge tracker it changes nothing.
+  TempDir with, without;
+  std::size_t keyframes = 0, tracks = 0;
+  RunRequest r = request(simulated().dataset, with.path(), kEdgeImu);
+  r.tracker = [&](const camera::StereoRectifier& rect, const Config& c) -> std::unique_ptr<tracking::Tracker> {
+    return std::make_unique<CountingTracker>(rect, c, &keyframes, &tracks);
+  };
+  const RunSummary s = run(r, Config{});
+  run(request(simulated().dataset, without.path(), kEdgeImu), Config{});
+  EXPECT_EQ(test::readFile(with.file("trajectory.csv")), test::readFile(without.file("trajectory.csv")));
+  EXPECT_EQ(keyframes, s.keyframes);
+  EXPECT_GE(tracks, s.frames - s.keyframes);
 }
 
 TEST(Run, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {

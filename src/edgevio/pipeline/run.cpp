@@ -87,8 +87,10 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
   const imu::StaticInit init = imu::staticInitialization(sequence->imu(), t0, to.static_init_window_s, to.static_chunk_s,
                                                          to.static_accel_std_max, to.static_gyro_std_max);
   s.static_initialization = init.is_static;
-  const tracking::EdgeTracker tracker(rect, config.vision, config.alignment, config.tracking);
-  Odometry odometry(req.mode, config, tracker, rect.T_b_rect(0), sequence->calibration().imu, sequence->imu(), init, req.realtime,
+  const std::unique_ptr<tracking::Tracker> tracker =
+      req.tracker ? req.tracker(rect, config)
+                  : std::make_unique<tracking::EdgeTracker>(rect, config.vision, config.alignment, config.tracking);
+  Odometry odometry(req.mode, config, *tracker, rect.T_b_rect(0), sequence->calibration().imu, sequence->imu(), init, req.realtime,
                     req.picture_stride > 0);
 
   const std::vector<std::size_t> frames = framesToRun(*sequence, req.skip);

@@ -3,8 +3,9 @@
 // (pipeline/run_writer.h). The sequence source, the thread pipeline
 // (pipeline/threaded_pipeline.h), the per-frame stage code
 // (pipeline/odometry.h) and the writers, put together.
-#include <functional>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "edgevio/pipeline/frame_record.h"
 #include "edgevio/pipeline/mode.h"
 #include "edgevio/pipeline/run_summary.h"
+#include "edgevio/tracking/edge_tracker.h"
 
 namespace edgevio::pipeline {
 
@@ -29,6 +31,10 @@ struct RunRequest {
   std::string calib;      ///< a bag's calibration (empty: found beside it)
   io::BagTopics topics;   ///< a bag's topics (empty: found by type)
   int picture_stride = 10;  ///< keep the alignment picture of every Nth uneventful frame (run_writer.h); 0: no pictures
+  /// The front end, for diagnostics that change what it sees (a tracker around
+  /// the edge tracker, e.g. with a render's true keyframe depths:
+  /// bench/link_consistency_bench); empty: the edge tracker.
+  std::function<std::unique_ptr<tracking::Tracker>(const camera::StereoRectifier&, const Config&)> tracker;
 };
 
 /// What a caller may watch while a run goes.
