@@ -15,28 +15,41 @@
 //  - where the links' error comes from (a second table): the NEES by the
 //    time from the keyframe, of the difference of consecutive links to one
 //    keyframe, and the part of the translation error that is a scale error.
-// Usage: link_consistency_bench [--mode edge+imu] [--skip K] [--imu-truth FILE] DATASET...
+//  - with --true-depth, all of it (and the run's ATE) with every keyframe's
+//    reference points moved along their rays to the render's true depth:
+//    what the links and the trajectory would be if stereo depth were exact,
+//    and how far the stereo depth is off (a third table).
+// Usage: link_consistency_bench [--mode edge+imu] [--skip K] [--imu-truth FILE] [--true-depth] DATASET...
 // (renders with ground truth; --imu-truth: a ground truth with velocity and
 // bias columns for the IMU part, e.g. EuRoC's groundtruth.csv beside a render
-// that replays its IMU log). Prints one markdown row per dataset and a total,
-// then the second table.
+// that replays its IMU log; --true-depth: renders of `edgevio simulate`, whose
+// simulation.yaml brings back the scene). Prints one markdown row per dataset
+// and a total, then the second table.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "edgevio/camera/stereo_rectifier.h"
 #include "edgevio/config/config.h"
+#include "edgevio/eval/metrics.h"
 #include "edgevio/imu/preintegration.h"
 #include "edgevio/io/sequence.h"
 #include "edgevio/io/trajectory_io.h"
 #include "edgevio/pipeline/mode.h"
 #include "edgevio/pipeline/run.h"
+#include "edgevio/sim/renderer.h"
+#include "edgevio/sim/simulator.h"
+#include "edgevio/tracking/edge_tracker.h"
 
 using namespace edgevio;
 using geometry::SE3;
@@ -57,6 +70,67 @@ struct Totals {
   std::size_t links = 0, inertial = 0;
   double nees = 0, inertial_nees = 0;
   Vec6 sum_sq = Vec6::Zero();
+};
+
+/// How far the keyframes' stereo depth was from the truth, on level 0:
+/// (ρ − ρ_true)/ρ_true per reference point.
+struct DepthErrors {
+  std::vector<double> relative;
+  std::vector<double> depth_m;  ///< the true depth of each
+};
+
+/// The edge tracker with each keyframe's reference points moved along their
+/// rays to the render's true depth: the nearest surface within a pixel of
+/// the point's projection at the camera's full resolution (an edge on an
+/// occlusion boundary is the nearer side's). Runs on the tracking thread only.
+class TrueDepthTracker final : public tracking::Tracker {
+ public:
+  TrueDepthTracker(const camera::StereoRectifier& rect, const Config& config, const sim::SimulatedWorld& world,
+                   DepthErrors* errors)
+      : inner_(rect, config.vision, config.alignment, config.tracking),
+        rect_(rect),
+        world_(world),
+        rays_(rect.rectifiedCamera()),
+        errors_(errors) {}
+
+  std::shared_ptr<const tracking::KeyframeData> makeKeyframe(tracking::PreparedFrame frame) const override {
+    const std::int64_t t = frame.t_ns;
+    auto k = std::make_shared<tracking::KeyframeData>(*inner_.makeKeyframe(std::move(frame)));
+    cv::Mat radiance, z;
+    sim::RenderOptions ro;
+    ro.threads = 1;
+    sim::render(world_.scene, rays_, world_.motion.pose(t) * rect_.T_b_rect(0), ro, &radiance, &z);
+    const camera::CameraModel& cam = rect_.rectifiedCamera();
+    for (std::size_t level = 0; level < k->depth.points.size(); ++level) {
+      for (Eigen::Vector3f& P : k->depth.points[level]) {
+        const Vec2 uv = cam.project(P.cast<double>());
+        const int u = static_cast<int>(std::lround(uv.x())), v = static_cast<int>(std::lround(uv.y()));
+        float nearest = std::numeric_limits<float>::infinity();
+        for (int dv = -1; dv <= 1; ++dv)
+          for (int du = -1; du <= 1; ++du)
+            if (u + du >= 0 && v + dv >= 0 && u + du < z.cols && v + dv < z.rows)
+              nearest = std::min(nearest, z.at<float>(v + dv, u + du));
+        if (!std::isfinite(nearest) || nearest <= 0) continue;  // the render saw nothing there: keep the stereo depth
+        if (level == 0) {
+          errors_->relative.push_back(static_cast<double>(nearest / P.z()) - 1.0);  // ρ/ρ_true − 1
+          errors_->depth_m.push_back(nearest);
+        }
+        P *= nearest / P.z();
+      }
+    }
+    return k;
+  }
+  tracking::Track track(const tracking::PreparedFrame& frame, const tracking::KeyframeData& keyframe,
+                        const SE3& T_w_b_keyframe, const tracking::Prediction& prediction) const override {
+    return inner_.track(frame, keyframe, T_w_b_keyframe, prediction);
+  }
+
+ private:
+  tracking::EdgeTracker inner_;
+  const camera::StereoRectifier& rect_;
+  const sim::SimulatedWorld& world_;
+  sim::RayTable rays_;
+  DepthErrors* errors_;
 };
 
 /// The ground truth at t (linear interpolation of position, velocity and
@@ -215,8 +289,38 @@ std::string sharedPartRow(const std::string& name, const std::vector<Link>& link
   return row + tail;
 }
 
-void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const std::string& imu_truth, Totals* totals,
-             std::string* shared_part_row) {
+/// One markdown row of the keyframes' stereo depth error against the truth:
+/// median and RMS of (ρ − ρ_true)/ρ_true, its mean (a bias common to all), the
+/// share beyond 10 %, and the median by true depth.
+std::string depthErrorRow(const std::string& name, const DepthErrors& d) {
+  std::vector<double> abs_err;
+  double sum = 0, sum_sq = 0;
+  std::size_t beyond = 0;
+  for (double e : d.relative) {
+    abs_err.push_back(std::abs(e));
+    sum += e;
+    sum_sq += e * e;
+    beyond += std::abs(e) > 0.1;
+  }
+  const double n = static_cast<double>(std::max<std::size_t>(d.relative.size(), 1));
+  std::string row = "| " + name + " | " + std::to_string(d.relative.size()) + " |";
+  char cell[160];
+  std::snprintf(cell, sizeof(cell), " %.4f | %.4f | %+.4f | %.3f |", median(abs_err), std::sqrt(sum_sq / n), sum / n,
+                static_cast<double>(beyond) / n);
+  row += cell;
+  const double bins[] = {0.0, 2.0, 4.0, 8.0, 1e9};
+  for (int b = 0; b < 4; ++b) {
+    std::vector<double> in_bin;
+    for (std::size_t i = 0; i < d.relative.size(); ++i)
+      if (d.depth_m[i] >= bins[b] && d.depth_m[i] < bins[b + 1]) in_bin.push_back(std::abs(d.relative[i]));
+    std::snprintf(cell, sizeof(cell), " %.4f (%zu) |", median(in_bin), in_bin.size());
+    row += cell;
+  }
+  return row;
+}
+
+void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const std::string& imu_truth, bool true_depth,
+             Totals* totals, std::string* shared_part_row, std::string* depth_row) {
   // The folder's name, with or without a trailing slash.
   const std::string name = std::filesystem::path(dataset + "/").lexically_normal().parent_path().filename().string();
   const io::Trajectory gt = io::readTrajectory(dataset + "/mav0/state_groundtruth_estimate0/data.csv");
@@ -247,11 +351,24 @@ void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const st
            r.alignment.T_nr.translation() - truth.translation()};
     links.push_back(l);
   };
-  const std::string out = (std::filesystem::temp_directory_path() / "edgevio_link_consistency").string();
+  // One folder per process: several benches may run side by side.
+  const std::string out =
+      (std::filesystem::temp_directory_path() / ("edgevio_link_consistency." + std::to_string(getpid()))).string();
   pipeline::RunRequest req(dataset, out, mode, skip);
   req.picture_stride = 0;
+  std::optional<sim::SimulatedWorld> world;
+  DepthErrors depth_errors;
+  if (true_depth) {
+    const SimulationRecord record = loadSimulationRecord(dataset);
+    world = sim::simulatedWorld(record.request, record.options);
+    req.tracker = [&](const camera::StereoRectifier& rect, const Config& c) -> std::unique_ptr<tracking::Tracker> {
+      return std::make_unique<TrueDepthTracker>(rect, c, *world, &depth_errors);
+    };
+  }
   pipeline::run(req, config, observer);
+  const double ate_m = eval::evaluate(gt, io::readTrajectory(out + "/trajectory_tum.txt"), config.eval).ate_rmse_m;
   std::filesystem::remove_all(out);
+  if (true_depth) *depth_row = depthErrorRow(name, depth_errors);
 
   // The IMU between consecutive frames at the true states.
   double inertial_nees = 0;
@@ -280,8 +397,8 @@ void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const st
     by_keyframe[l.t_ref_ns].push_back(&l);
   }
   const double m = static_cast<double>(std::max<std::size_t>(links.size(), 1));
-  std::printf("| %s | %zu | %.1f (%.1f) | %.2f %.2f %.2f | %.2f %.2f %.2f | %.2f %.2f | %.2f %.2f | %.2f (%.2f) |\n",
-              name.c_str(), links.size(), nees / m, median(link_each), std::sqrt(sum_sq[0] / m),
+  std::printf("| %s | %.4f | %zu | %.1f (%.1f) | %.2f %.2f %.2f | %.2f %.2f %.2f | %.2f %.2f | %.2f %.2f | %.2f (%.2f) |\n",
+              name.c_str(), ate_m, links.size(), nees / m, median(link_each), std::sqrt(sum_sq[0] / m),
               std::sqrt(sum_sq[1] / m), std::sqrt(sum_sq[2] / m), std::sqrt(sum_sq[3] / m), std::sqrt(sum_sq[4] / m),
               std::sqrt(sum_sq[5] / m), (intraclassCorrelation(by_keyframe, 0) + intraclassCorrelation(by_keyframe, 1) +
                                         intraclassCorrelation(by_keyframe, 2)) / 3,
@@ -306,6 +423,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> datasets;
   std::string imu_truth;
   int skip = 0;
+  bool true_depth = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--skip") == 0 && i + 1 < argc) {
       char* end = nullptr;
@@ -315,6 +433,10 @@ int main(int argc, char** argv) {
         return 2;
       }
       skip = static_cast<int>(k);
+      continue;
+    }
+    if (std::strcmp(argv[i], "--true-depth") == 0) {
+      true_depth = true;
       continue;
     }
     if (std::strcmp(argv[i], "--imu-truth") == 0 && i + 1 < argc) {
@@ -333,22 +455,23 @@ int main(int argc, char** argv) {
     }
   }
   if (datasets.empty()) {
-    std::fprintf(stderr, "usage: %s [--mode edge+imu] [--skip K] [--imu-truth FILE] DATASET...\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [--mode edge+imu] [--skip K] [--imu-truth FILE] [--true-depth] DATASET...\n", argv[0]);
     return 2;
   }
-  std::printf("mode %s, skip %d; NEES against the alignment's covariance (JtWJ)^-1 (6 if consistent; the window uses it x "
+  std::printf("mode %s, skip %d%s; ATE RMSE (SE(3)); NEES against the alignment's covariance (JtWJ)^-1 (6 if consistent; the window uses it x "
               "estimator.visual_covariance_scale); RMS of e_k/sigma_k per component (1 if consistent); "
               "intraclass correlation by keyframe and correlation of consecutive links to one keyframe (0 if "
               "independent); IMU NEES of the motion block at the calibration's densities (9 if consistent). The median of a "
               "consistent NEES is 5.35 (6 dof) and 8.34 (9 dof)\n\n",
-              pipeline::modeName(mode).c_str(), skip);
-  std::printf("| dataset | links | NEES mean (median) | RMS e/sigma: tx ty tz | rx ry rz | ICC t, r | consecutive t, r | IMU NEES mean (median) |\n");
-  std::printf("|---|---:|---:|---|---|---|---|---:|\n");
+              pipeline::modeName(mode).c_str(), skip, true_depth ? ", keyframes at the true depth" : "");
+  std::printf("| dataset | ATE m | links | NEES mean (median) | RMS e/sigma: tx ty tz | rx ry rz | ICC t, r | consecutive t, r | IMU NEES mean (median) |\n");
+  std::printf("|---|---:|---:|---:|---|---|---|---|---:|\n");
   Totals t;
-  std::vector<std::string> shared_part_rows(datasets.size());
-  for (std::size_t i = 0; i < datasets.size(); ++i) analyse(datasets[i], mode, skip, imu_truth, &t, &shared_part_rows[i]);
+  std::vector<std::string> shared_part_rows(datasets.size()), depth_rows(datasets.size());
+  for (std::size_t i = 0; i < datasets.size(); ++i)
+    analyse(datasets[i], mode, skip, imu_truth, true_depth, &t, &shared_part_rows[i], &depth_rows[i]);
   const double m = static_cast<double>(std::max<std::size_t>(t.links, 1));
-  std::printf("| all | %zu | %.1f | %.2f %.2f %.2f | %.2f %.2f %.2f | | | %.2f |\n", t.links, t.nees / m, std::sqrt(t.sum_sq[0] / m),
+  std::printf("| all | | %zu | %.1f | %.2f %.2f %.2f | %.2f %.2f %.2f | | | %.2f |\n", t.links, t.nees / m, std::sqrt(t.sum_sq[0] / m),
               std::sqrt(t.sum_sq[1] / m), std::sqrt(t.sum_sq[2] / m), std::sqrt(t.sum_sq[3] / m), std::sqrt(t.sum_sq[4] / m),
               std::sqrt(t.sum_sq[5] / m), t.inertial ? t.inertial_nees / static_cast<double>(t.inertial) : std::nan(""));
   std::printf("\nWhere the error comes from: NEES (links) by the time from the keyframe; NEES of the difference of consecutive "
@@ -360,5 +483,11 @@ int main(int argc, char** argv) {
               "next keyframe t, r |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
   for (const std::string& row : shared_part_rows) std::printf("%s\n", row.c_str());
+  if (!true_depth) return 0;
+  std::printf("\nThe keyframes' stereo depth against the truth, level 0: |rho - rho_true|/rho_true, median and RMS, its "
+              "mean (signed), the share beyond 10 %%; the median by true depth (points)\n\n");
+  std::printf("| dataset | points | median | RMS | mean | > 10 %% | < 2 m | 2-4 m | 4-8 m | >= 8 m |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const std::string& row : depth_rows) std::printf("%s\n", row.c_str());
   return 0;
 }
