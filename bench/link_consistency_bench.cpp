@@ -63,6 +63,7 @@ struct Link {
   Vec6 e;
   Mat6 covariance;       ///< the alignment's (JᵀWJ)⁻¹
   Vec3 t_true, t_error;  ///< the true translation of T_nr and the measured one's error
+  double mean_distance_px = 0.0;  ///< the alignment's mean distance of its points to the nearest edge
 };
 
 /// Sums over the datasets.
@@ -319,8 +320,34 @@ std::string depthErrorRow(const std::string& name, const DepthErrors& d) {
   return row;
 }
 
+/// One markdown row: the NEES divided by the square of the alignment's mean
+/// point distance ῡ [px], overall and by the time from the keyframe; the
+/// same spread over the time bins and renders as the NEES itself would mean
+/// that ῡ²·(JᵀWJ)⁻¹ is a covariance whose scale fits every link.
+std::string residualScaledRow(const std::string& name, const std::vector<Link>& links) {
+  std::string row = "| " + name + " |";
+  const double bins[] = {0.0, 1e9, 0.0, 0.1, 0.2, 0.4, 1e9};
+  char cell[64];
+  for (int b = 0; b < 5; ++b) {
+    const double lo = b == 0 ? bins[0] : bins[b + 1], hi = b == 0 ? bins[1] : bins[b + 2];
+    double sum = 0, distance = 0;
+    std::size_t count = 0;
+    for (const Link& l : links) {
+      const double gap_s = static_cast<double>(l.t_ns - l.t_ref_ns) * 1e-9;
+      if (gap_s < lo || gap_s >= hi || !(l.mean_distance_px > 0)) continue;
+      sum += l.nees / (l.mean_distance_px * l.mean_distance_px);
+      distance += l.mean_distance_px;
+      ++count;
+    }
+    const double n = static_cast<double>(std::max<std::size_t>(count, 1));
+    std::snprintf(cell, sizeof(cell), " %.1f (%.2f px) |", count ? sum / n : std::nan(""), distance / n);
+    row += cell;
+  }
+  return row;
+}
+
 void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const std::string& imu_truth, bool true_depth,
-             Totals* totals, std::string* shared_part_row, std::string* depth_row) {
+             Totals* totals, std::string* shared_part_row, std::string* residual_row, std::string* depth_row) {
   // The folder's name, with or without a trailing slash.
   const std::string name = std::filesystem::path(dataset + "/").lexically_normal().parent_path().filename().string();
   const io::Trajectory gt = io::readTrajectory(dataset + "/mav0/state_groundtruth_estimate0/data.csv");
@@ -349,6 +376,7 @@ void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const st
     const Vec6 sigma = r.alignment.covariance.diagonal().cwiseSqrt();
     Link l{r.t_ns, r.reference_t_ns, e.cwiseQuotient(sigma), llt.matrixL().solve(e).squaredNorm(), e, r.alignment.covariance, truth.translation(),
            r.alignment.T_nr.translation() - truth.translation()};
+    l.mean_distance_px = r.alignment.mean_distance_px;
     links.push_back(l);
   };
   // One folder per process: several benches may run side by side.
@@ -408,6 +436,7 @@ void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const st
               (consecutiveCorrelation(links, 3) + consecutiveCorrelation(links, 4) + consecutiveCorrelation(links, 5)) / 3,
               inertial ? inertial_nees / static_cast<double>(inertial) : std::nan(""), median(inertial_each));
   *shared_part_row = sharedPartRow(name, links, by_keyframe);
+  *residual_row = residualScaledRow(name, links);
   std::fflush(stdout);
   totals->links += links.size();
   totals->nees += nees;
@@ -467,9 +496,9 @@ int main(int argc, char** argv) {
   std::printf("| dataset | ATE m | links | NEES mean (median) | RMS e/sigma: tx ty tz | rx ry rz | ICC t, r | consecutive t, r | IMU NEES mean (median) |\n");
   std::printf("|---|---:|---:|---:|---|---|---|---|---:|\n");
   Totals t;
-  std::vector<std::string> shared_part_rows(datasets.size()), depth_rows(datasets.size());
+  std::vector<std::string> shared_part_rows(datasets.size()), residual_rows(datasets.size()), depth_rows(datasets.size());
   for (std::size_t i = 0; i < datasets.size(); ++i)
-    analyse(datasets[i], mode, skip, imu_truth, true_depth, &t, &shared_part_rows[i], &depth_rows[i]);
+    analyse(datasets[i], mode, skip, imu_truth, true_depth, &t, &shared_part_rows[i], &residual_rows[i], &depth_rows[i]);
   const double m = static_cast<double>(std::max<std::size_t>(t.links, 1));
   std::printf("| all | | %zu | %.1f | %.2f %.2f %.2f | %.2f %.2f %.2f | | | %.2f |\n", t.links, t.nees / m, std::sqrt(t.sum_sq[0] / m),
               std::sqrt(t.sum_sq[1] / m), std::sqrt(t.sum_sq[2] / m), std::sqrt(t.sum_sq[3] / m), std::sqrt(t.sum_sq[4] / m),
@@ -483,6 +512,10 @@ int main(int argc, char** argv) {
               "next keyframe t, r |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
   for (const std::string& row : shared_part_rows) std::printf("%s\n", row.c_str());
+  std::printf("\nThe NEES over the square of the alignment's mean point distance (its mean), all links and by the time "
+              "from the keyframe: as flat as the NEES over renders and times if that distance sets each link's scale\n\n");
+  std::printf("| dataset | all | < 0.1 s | 0.1-0.2 s | 0.2-0.4 s | >= 0.4 s |\n|---|---:|---:|---:|---:|---:|\n");
+  for (const std::string& row : residual_rows) std::printf("%s\n", row.c_str());
   if (!true_depth) return 0;
   std::printf("\nThe keyframes' stereo depth against the truth, level 0: |rho - rho_true|/rho_true, median and RMS, its "
               "mean (signed), the share beyond 10 %%; the median by true depth (points)\n\n");
