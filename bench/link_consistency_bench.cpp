@@ -43,6 +43,7 @@
 
 #include "edgevio/camera/stereo_rectifier.h"
 #include "edgevio/config/config.h"
+#include "edgevio/config/simulation_record.h"
 #include "edgevio/eval/metrics.h"
 #include "edgevio/imu/preintegration.h"
 #include "edgevio/io/sequence.h"

@@ -1,4 +1,5 @@
 #include "edgevio/config/config.h"
+#include "edgevio/config/simulation_record.h"
 
 #include <cstdlib>
 #include <filesystem>

@@ -18,7 +18,6 @@
 #include "edgevio/loop/back_link_options.h"
 #include "edgevio/loop/loop_options.h"
 #include "edgevio/sim/sim_options.h"
-#include "edgevio/sim/simulator.h"
 #include "edgevio/tracking/alignment_options.h"
 #include "edgevio/tracking/tracking_options.h"
 #include "edgevio/vision/vision_options.h"
@@ -64,17 +63,6 @@ void forEachSection(C& config, F&& f) {
 /// Reads a config file over the defaults. Keys absent from the file keep their
 /// defaults and are listed in `missing_keys` (as "section.key") when given.
 Config loadConfig(const std::string& path, std::vector<std::string>* missing_keys = nullptr);
-
-/// A render folder's simulation.yaml (written by `edgevio simulate`): the
-/// request and the sim options it was made with, from which
-/// sim::simulatedWorld brings back its motion and scene.
-struct SimulationRecord {
-  sim::SimRequest request;  ///< out_dir: the folder
-  sim::SimOptions options;
-};
-
-/// Throws InputError naming the file and line for a missing or bad record.
-SimulationRecord loadSimulationRecord(const std::string& folder);
 
 /// Writes the config as YAML with every key, its unit, meaning and valid values as comments.
 void writeConfig(std::ostream& out, const Config& config);
