@@ -43,7 +43,7 @@
 
 #include "edgevio/camera/stereo_rectifier.h"
 #include "edgevio/config/config.h"
-#include "edgevio/config/simulation_record.h"
+#include "edgevio/sim/simulation_record.h"
 #include "edgevio/eval/metrics.h"
 #include "edgevio/imu/preintegration.h"
 #include "edgevio/io/sequence.h"
@@ -409,7 +409,7 @@ void analyse(const std::string& dataset, pipeline::Mode mode, int skip, const st
   std::optional<sim::SimulatedWorld> world;
   DepthErrors depth_errors;
   if (true_depth != TrueDepth::kOff) {
-    const SimulationRecord record = loadSimulationRecord(dataset);
+    const sim::SimulationRecord record = sim::loadSimulationRecord(dataset);
     world = sim::simulatedWorld(record.request, record.options);
     req.tracker = [&](const camera::StereoRectifier& rect, const Config& c) -> std::unique_ptr<tracking::Tracker> {
       return std::make_unique<TrueDepthTracker>(rect, c, *world, true_depth, &depth_errors);

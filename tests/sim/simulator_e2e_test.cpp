@@ -14,7 +14,7 @@
 #include "common/sim_fixture.h"
 #include "common/test_support.h"
 #include "edgevio/common/error.h"
-#include "edgevio/config/simulation_record.h"
+#include "edgevio/sim/simulation_record.h"
 #include "edgevio/geometry/types.h"
 #include "edgevio/io/calibration_io.h"
 #include "edgevio/io/euroc_dataset.h"

@@ -22,6 +22,10 @@
 #include "edgevio/tracking/tracking_options.h"
 #include "edgevio/vision/vision_options.h"
 
+namespace YAML {
+class Node;
+}
+
 namespace edgevio {
 
 struct Config {
@@ -63,6 +67,10 @@ void forEachSection(C& config, F&& f) {
 /// Reads a config file over the defaults. Keys absent from the file keep their
 /// defaults and are listed in `missing_keys` (as "section.key") when given.
 Config loadConfig(const std::string& path, std::vector<std::string>* missing_keys = nullptr);
+
+/// Reads a `sim:` section found in another file (a render's
+/// simulation.yaml) as a config file's: errors name `path`, the line and the key.
+void readSimOptions(const YAML::Node& section, const std::string& path, sim::SimOptions* options);
 
 /// Writes the config as YAML with every key, its unit, meaning and valid values as comments.
 void writeConfig(std::ostream& out, const Config& config);

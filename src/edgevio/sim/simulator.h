@@ -55,7 +55,7 @@ struct SimSummary {
 
 /// What a simulation's images are rendered from: the rig, the motion and the
 /// scene. The same request and options give the same world, so a render
-/// folder's simulation.yaml (config/simulation_record.h) brings it back, to
+/// folder's simulation.yaml (sim/simulation_record.h) brings it back, to
 /// render what the files do not hold, such as the true depth at any pose.
 struct SimulatedWorld {
   camera::StereoRig rig;
