@@ -179,6 +179,16 @@ TEST(Simulator, ItsRecordBringsBackTheWorldItsImagesWereRenderedFrom) {
   text.replace(seed_at, text.find('\n', seed_at) - seed_at, "seed: three");
   std::ofstream(yaml) << text;
   test::expectInputError([&] { loadSimulationRecord(dir.path()); }, {"simulation.yaml:6", "'seed': expected a number"});
+  text.replace(text.find("seed: three"), 11, "seed: 3");
+  const std::size_t noise_at = text.find("noise: ");
+  text.replace(noise_at, text.find('\n', noise_at) - noise_at, "noise: maybe");
+  std::ofstream(yaml) << text;
+  test::expectInputError([&] { loadSimulationRecord(dir.path()); }, {"simulation.yaml:8", "'noise': expected true or false"});
+  text.replace(text.find("noise: maybe"), 12, "noise: true");
+  const std::size_t faults_at = text.find("faults: ");
+  text.replace(faults_at, text.find('\n', faults_at) - faults_at, "faults:\n  - \"black:at=1\"\n  - \"quake:at=2\"");
+  std::ofstream(yaml) << text;
+  test::expectInputError([&] { loadSimulationRecord(dir.path()); }, {"simulation.yaml:16", "'faults':", "quake"});
 }
 
 }  // namespace

@@ -90,6 +90,7 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
   const std::unique_ptr<tracking::Tracker> tracker =
       req.tracker ? req.tracker(rect, config)
                   : std::make_unique<tracking::EdgeTracker>(rect, config.vision, config.alignment, config.tracking);
+  if (!tracker) throw InputError("the run request's tracker factory returned no tracker");
   Odometry odometry(req.mode, config, *tracker, rect.T_b_rect(0), sequence->calibration().imu, sequence->imu(), init, req.realtime,
                     req.picture_stride > 0);
 

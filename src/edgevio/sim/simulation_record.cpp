@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "edgevio/common/error.h"
+#include "edgevio/common/options.h"
 #include "edgevio/common/yaml_file.h"
 #include "edgevio/config/config.h"
 #include "edgevio/sim/faults.h"
@@ -22,19 +23,20 @@ T recordValue(const YAML::Node& root, const char* key, const std::string& path) 
                                                     "simulation.yaml is written by edgevio simulate; render it again)");
   const std::string& text = n.Scalar();
   T v{};
-  if constexpr (std::is_same_v<T, std::string>) {
-    v = text;
-  } else if constexpr (std::is_same_v<T, bool>) {
-    if (text != "true" && text != "false") throw InputError(path, yamlLine(n), std::string("'") + key + "': expected true or false");
-    v = text == "true";
+  std::string expected;
+  if constexpr (std::is_same_v<T, std::string> || std::is_same_v<T, bool> || std::is_same_v<T, int>) {
+    expected = options::detail::parse(options::Value{false, text, {}}, &v);
   } else {
+    // Own number parsing: the options' parser takes finite numbers only, and a record's duration may be "nan"
+    // (a run to the trajectory's end); seeds use all 64 bits.
     char* end = nullptr;
     if constexpr (std::is_integral_v<T>)
-      v = static_cast<T>(std::strtoull(text.c_str(), &end, 10));  // seeds use all 64 bits
+      v = static_cast<T>(std::strtoull(text.c_str(), &end, 10));
     else
-      v = static_cast<T>(std::strtod(text.c_str(), &end));  // reads "nan" too: the duration of a run to the file's end
-    if (end == text.c_str() || *end != '\0') throw InputError(path, yamlLine(n), std::string("'") + key + "': expected a number");
+      v = static_cast<T>(std::strtod(text.c_str(), &end));
+    if (end == text.c_str() || *end != '\0') expected = "a number";
   }
+  if (!expected.empty()) throw InputError(path, yamlLine(n), std::string("'") + key + "': expected " + expected);
   return v;
 }
 
@@ -62,7 +64,11 @@ SimulationRecord loadSimulationRecord(const std::string& folder) {
   if (const YAML::Node f = root["faults"]; f && f.IsSequence()) {
     for (const auto& item : f) {
       if (!item.IsScalar()) throw InputError(path, yamlLine(item), "'faults': expected a list of fault specs");
-      q.faults.push_back(parseFault(item.Scalar()));
+      try {
+        q.faults.push_back(parseFault(item.Scalar()));
+      } catch (const InputError& e) {
+        throw InputError(path, yamlLine(item), std::string("'faults': ") + e.what());
+      }
     }
   }
   const YAML::Node section = root["sim"];
