@@ -5,7 +5,7 @@
 #   <!-- results:NAME -->  ...  <!-- /results:NAME -->
 # with a line naming the version, the date and the machine.
 # Also renders the demo and keeps its plot as the README's picture (docs/images/demo.svg).
-# Usage: scripts/results.sh [OUT_DIR] [NAME ...]   (names: demo accuracy skip_sweep faults speed; default all)
+# Usage: scripts/results.sh [OUT_DIR] [NAME ...]   (names: demo accuracy accuracy_synthesised_imu skip_sweep faults speed; default all)
 # With SPLICE_ONLY=1 it only puts OUT_DIR/NAME/tables.md (from an earlier run) into the README.
 # Takes about an hour on 2 cores; renders are kept in OUT_DIR and reused.
 set -euo pipefail
@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 out=${1:-out/results}
 shift || true
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(demo accuracy skip_sweep faults speed)
+[ ${#names[@]} -gt 0 ] || names=(demo accuracy accuracy_synthesised_imu skip_sweep faults speed)
 mkdir -p "$out"
 
 machine=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
