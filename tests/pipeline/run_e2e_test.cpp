@@ -252,6 +252,12 @@ TEST(Run, TheRequestsTrackerIsTheFrontEnd) {
   EXPECT_EQ(test::readFile(with.file("trajectory.csv")), test::readFile(without.file("trajectory.csv")));
   EXPECT_EQ(keyframes, s.keyframes);
   EXPECT_GE(tracks, s.frames - s.keyframes);
+
+  // A factory that makes no tracker is refused before the first frame.
+  TempDir none;
+  RunRequest n = request(simulated().dataset, none.path(), kEdgeImu);
+  n.tracker = [](const camera::StereoRectifier&, const Config&) -> std::unique_ptr<tracking::Tracker> { return nullptr; };
+  test::expectInputError([&] { run(n, Config{}); }, {"tracker factory returned no tracker"});
 }
 
 TEST(Run, ShortRenderedSequenceEdgeImuIsAccurateAndDeterministic) {
