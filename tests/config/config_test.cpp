@@ -96,6 +96,10 @@ TEST(Config, ErrorsNameFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(errorOf("estimator:\n  window_size: 30\n  visual_shared_fraction: 1\n").find(":3: invalid value: estimator.visual_shared_fraction"),
             std::string::npos);
+  EXPECT_NE(errorOf("estimator:\n  coupling: tight\n  estimate_time_offset: true\n")
+                .find("invalid value: estimator.coupling: tight does not estimate the camera-IMU calibration"),
+            std::string::npos);
+  EXPECT_EQ(errorOf("estimator:\n  coupling: tight\n"), "");
   EXPECT_NE(errorOf("dataset: 5\n").find("must be a mapping"), std::string::npos);
   EXPECT_NE(errorOf("dataset:\n  imu_gap_warning_s: [1\n").find("invalid YAML"), std::string::npos);
   EXPECT_NE(errorOf("eval:\n  association_tolerance_s: .nan\n").find("expected a number"), std::string::npos);

@@ -89,7 +89,7 @@ Window syntheticWindow(std::vector<NavState>* truth) {
     init.p_w += v3(0.05);
     init.R_w_b = x.R_w_b * SO3::exp(v3(0.02));
     init.v_w += v3(0.05);
-    w.states.push_back({imu.samples[idx].t_ns, init, 0.0, imu.samples[idx].gyro});
+    w.states.push_back({imu.samples[idx].t_ns, init, 0.0, imu.samples[idx].gyro, {}});
     if (k > 0) {
       imu::Preintegration p(Vec3::Zero(), Vec3::Zero(), imu::ImuNoise{});
       for (std::size_t m = idx - step; m < idx; ++m)
@@ -109,7 +109,7 @@ Window syntheticWindow(std::vector<NavState>* truth) {
       l.T_nr = camPose((*truth)[k]).inverse() * camPose((*truth)[r]) * SE3::exp(noise);
       l.information.setZero();
       l.information.diagonal() << Vec3::Constant(1 / (st * st)), Vec3::Constant(1 / (sr * sr));
-      w.visual.push_back({r, k, l});
+      w.visual.push_back({r, k, l, nullptr});
     }
   // Anchor state 0 with a strong prior (the gauge of this test problem).
   w.gauge = Gauge::kNone;

@@ -10,6 +10,17 @@ EDGEVIO_OPTIONS_TABLE(EstimatorOptions,
            "--realtime: the frame's pose is handed out after this many of them (the rest follow it; offline all precede it); "
            "0: after the newest state alone is solved, the others held, and all of them follow",
            atLeast(0)),
+    choice("coupling", &S::coupling, Coupling::kSemiTight, kCouplingChoices, "what a tracking link puts in the window"),
+    number("tight_points", &S::tight_points, 1000, "-",
+           "coupling tight: at most this many of a keyframe's level-0 reference points, evenly strided, are the window's",
+           atLeast(1)),
+    number("tight_pixel_sigma_px", &S::tight_pixel_sigma_px, 4.0, "px",
+           "coupling tight: std. dev. of an edge residual (level-0 pixels, half the camera's resolution); larger than the "
+           "edges' own error because neighbouring points' errors are correlated",
+           above(0)),
+    number("tight_huber_px", &S::tight_huber_px, 1.0, "px", "coupling tight: Huber threshold of an edge residual", above(0)),
+    number("tight_disparity_sigma_px", &S::tight_disparity_sigma_px, 0.1, "px",
+           "coupling tight: std. dev. of block matching's level-0 disparity, the prior of a point's inverse depth", above(0)),
     number("huber_translation_m", &S::huber_translation_m, 0.1, "m",
            "c_t of eq 24: Huber threshold of a visual link's translation error", above(0)),
     number("huber_rotation_deg", &S::huber_rotation_deg, 2.0, "deg",
@@ -82,6 +93,12 @@ EDGEVIO_OPTIONS_TABLE(EstimatorOptions,
            "IMU modes: estimate a correction of the calibration's camera-IMU translation (the lever arm) in the window "
            "(frames.csv cam_imu_translation_correction_m); it needs rotation about more than one axis to be observable"),
     number("cam_imu_translation_sigma_m", &S::cam_imu_translation_sigma_m, 0.02, "m",
-           "prior std. dev. of that correction along each axis", above(0)))
+           "prior std. dev. of that correction along each axis", above(0)),
+    Rule<S>{[](const S& s) {
+              return s.coupling != Coupling::kTight ||
+                     !(s.estimate_time_offset || s.estimate_cam_imu_rotation || s.estimate_cam_imu_translation);
+            },
+            "coupling: tight does not estimate the camera-IMU calibration (estimate_time_offset, estimate_cam_imu_rotation, "
+            "estimate_cam_imu_translation must be false)"})
 
 }  // namespace edgevio::estimator

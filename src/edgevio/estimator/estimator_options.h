@@ -3,9 +3,19 @@
 
 namespace edgevio::estimator {
 
+/// How the window uses a tracking link (METHOD.md §5; keyframe_structure.h).
+enum class Coupling { kSemiTight, kTight };
+inline constexpr options::Choice<Coupling> kCouplingChoices[] = {
+    {Coupling::kSemiTight, "semi_tight", "the alignment's relative pose with its covariance (the paper's)"},
+    {Coupling::kTight, "tight",
+     "the edge residuals of the keyframe's reference points in the frame, their inverse depths estimated in the window"}};
+
 /// The sliding-window estimator (config section `estimator`; METHOD.md §4, §5).
 struct EstimatorOptions {
   int window_size, max_iterations, realtime_pose_iterations;
+  Coupling coupling;
+  int tight_points;
+  double tight_pixel_sigma_px, tight_huber_px, tight_disparity_sigma_px;
   double huber_translation_m, huber_rotation_deg, damping, external_check_rotation_deg, external_check_translation_m,
       loop_check_rotation_deg, loop_check_translation_m, front_translation_m, front_rotation_deg,
       visual_covariance_scale, visual_shared_fraction, imu_noise_inflation, gyro_bias_walk_inflation,

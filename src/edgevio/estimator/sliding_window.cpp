@@ -113,6 +113,9 @@ struct Normal {
     cost = 0.0;
   }
 
+  /// Adds to the (δp, δθ) rows and columns of blocks a, b (a visual term's only ones).
+  void addPose(long a, long b, const Mat6& Hab) { H.block<6, 6>(15 * a, 15 * b) += Hab; }
+
   template <int R>
   void add(const Eigen::Matrix<double, R, 1>& r, const Eigen::Matrix<double, R, R>& W,
            const std::vector<std::pair<long, Eigen::Matrix<double, R, 15>>>& blocks) {
@@ -184,6 +187,24 @@ struct SharedError {
   }
 };
 
+/// Whether the window weighs a link by its edge residuals (Coupling::kTight).
+bool isTight(const Window& w, const VisualLink& l) { return l.image && !w.states[l.r].points.empty(); }
+
+/// T_nr of two states' cameras: (T_w_bn T_b_c)⁻¹ (T_w_br T_b_c).
+geometry::SE3 relativePose(const NavState& r, const NavState& n, const geometry::SE3& T_b_c) {
+  return (geometry::SE3(n.R_w_b, n.p_w) * T_b_c).inverse() * (geometry::SE3(r.R_w_b, r.p_w) * T_b_c);
+}
+
+/// One keyframe's tight links as linearised: its points' system over the
+/// links' twists, and each twist's Jacobians with respect to the (δp, δθ) of
+/// the keyframe's state (A) and of the frame's (B): ξ_a = A_a δx_r + B_a δx_{n_a}.
+struct StructureGroup {
+  std::size_t reference = 0;
+  std::vector<std::size_t> frames;
+  std::vector<Mat6> A, B;
+  StructureSystem system;
+};
+
 /// Where a state's Jacobians are evaluated: its first estimate (the prior's
 /// linearisation point) when it is in the prior and first-estimate Jacobians
 /// are on, otherwise its current estimate.
@@ -230,6 +251,50 @@ Vec6 visualResidual(const Window& w, const VisualLink& l, const NavState& xr, co
   return res;
 }
 
+/// Adds the edge residuals of state `reference`'s points in the frames of its
+/// tight `links` (keyframe_structure.h), the inverse depths eliminated, to the
+/// normal equations: H_states += Jᵀ H_ξ J and g_states += Jᵀ g_ξ with ξ = J δx.
+/// The twists' Jacobians are those of relativePoseResidual at a zero residual
+/// (measured = predicted: Jr⁻¹ = I), at the states' Jacobian points.
+void addStructure(const Window& w, const EstimatorOptions& o, const std::vector<const NavState*>& jp,
+                  const std::map<std::size_t, long>& slot, std::size_t reference, const std::vector<const VisualLink*>& links,
+                  Normal* n, std::vector<StructureGroup>* groups) {
+  const geometry::SE3 T_b_c = cameraExtrinsics(w);
+  StructureGroup grp;
+  grp.reference = reference;
+  std::vector<StructureLink> at;
+  for (const VisualLink* l : links) {
+    at.push_back({relativePose(w.states[l->r].x, w.states[l->n].x, T_b_c), l->image.get()});
+    grp.frames.push_back(l->n);
+  }
+  grp.system = linearizeStructure(w.states[reference].points, at, {o.tight_pixel_sigma_px, o.tight_huber_px}, n->cost_only);
+  n->cost += grp.system.cost;
+  if (n->cost_only) return;
+  for (const std::size_t f : grp.frames) {
+    Mat6x15 Jr, Jn;
+    relativePoseResidual(relativePose(*jp[reference], *jp[f], T_b_c), *jp[reference], *jp[f], T_b_c, &Jr, &Jn);
+    grp.A.push_back(Jr.leftCols<6>());
+    grp.B.push_back(Jn.leftCols<6>());
+  }
+  const long sr = slot.at(reference);
+  for (std::size_t a = 0; a < grp.frames.size(); ++a) {
+    const long la = static_cast<long>(a), na = slot.at(grp.frames[a]);
+    const Vec6 ga = grp.system.g.segment<6>(6 * la);
+    n->g.segment<6>(15 * sr) += grp.A[a].transpose() * ga;
+    n->g.segment<6>(15 * na) += grp.B[a].transpose() * ga;
+    for (std::size_t b = 0; b < grp.frames.size(); ++b) {
+      const long nb = slot.at(grp.frames[b]);
+      const Mat6 Hab = grp.system.H.block<6, 6>(6 * la, 6 * static_cast<long>(b));
+      const Mat6 AH = grp.A[a].transpose() * Hab, BH = grp.B[a].transpose() * Hab;
+      n->addPose(sr, sr, AH * grp.A[b]);
+      n->addPose(sr, nb, AH * grp.B[b]);
+      n->addPose(na, sr, BH * grp.A[b]);
+      n->addPose(na, nb, BH * grp.B[b]);
+    }
+  }
+  if (groups) groups->push_back(std::move(grp));
+}
+
 /// The calibration file's prior on the calibration block (CalibrationState):
 /// ½(δ/σ)² per estimated direction, unit information on the others.
 void addCalibrationPrior(const CalibrationState& c, long slot, Normal* n) {
@@ -253,9 +318,12 @@ enum class Priors { kBoth, kMarginal, kNone };
 /// Adds the factors selected by the predicates, with local indices from
 /// `slot` and the calibration block (with the window's calibration) at
 /// `calib_slot`, and the `priors`.
+/// Tight links are grouped by keyframe among those `use_visual` takes; with
+/// `groups`, their linearisation is kept for the points' back-substitution.
 template <class UseInertial, class UseVisual>
 void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::size_t, long>& slot, long calib_slot,
-               Priors priors, UseInertial use_inertial, UseVisual use_visual, Normal* n) {
+               Priors priors, UseInertial use_inertial, UseVisual use_visual, Normal* n,
+               std::vector<StructureGroup>* groups = nullptr) {
   const std::vector<const NavState*> jp = jacobianPoints(w, o);
   // Jacobians in the residual's own call when they are taken at the estimate,
   // in a second call at the first estimates otherwise.
@@ -272,8 +340,13 @@ void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::s
   }
   const double shared = o.visual_shared_fraction;
   std::map<std::size_t, SharedError> by_reference;  // the links of each reference state, when they share an error
+  std::map<std::size_t, std::vector<const VisualLink*>> tight_by_reference;
   for (const VisualLink& l : w.visual) {
     if (!use_visual(l)) continue;
+    if (isTight(w, l)) {
+      tight_by_reference[l.r].push_back(&l);
+      continue;
+    }
     Mat6x15 Jr, Jn, Jc;
     const bool fej = elsewhere(l.r, l.n), here = !n->cost_only && !fej;
     Mat6x15* Jc_here = w.calibration && here ? &Jc : nullptr;
@@ -297,6 +370,7 @@ void linearize(const Window& w, const EstimatorOptions& o, const std::map<std::s
     }
   }
   for (const auto& [reference, e] : by_reference) e.subtract(shared, n);
+  for (const auto& [reference, links] : tight_by_reference) addStructure(w, o, jp, slot, reference, links, n, groups);
   if (priors == Priors::kBoth && w.calibration) addCalibrationPrior(*w.calibration, calib_slot, n);
   if (priors != Priors::kNone && !w.prior.empty()) {
     // ½δᵀHδ + bᵀδ at δ = x ⊟ x0: gradient b + Hδ, Hessian H (the Jacobian of
@@ -407,10 +481,12 @@ SolveSummary solve(Window* w, const EstimatorOptions& o) {
   if (N == 0) return s;
   const auto slots = identitySlots(N);
   Normal n(windowBlocks(*w));
+  std::vector<StructureGroup> groups;
   for (int it = 0; it < o.max_iterations; ++it) {
     n.reset();
+    groups.clear();
     linearize(*w, o, slots, static_cast<long>(N), Priors::kBoth, [](const InertialLink&) { return true; },
-              [](const VisualLink&) { return true; }, &n);
+              [](const VisualLink&) { return true; }, &n, &groups);
     if (it == 0) s.initial_cost = n.cost;
     double damping = o.damping;
     if (w->gauge != Gauge::kNone && o.gauge_prior) {
@@ -431,6 +507,13 @@ SolveSummary solve(Window* w, const EstimatorOptions& o) {
     const NavState oldest = w->states.front().x;
     for (std::size_t k = 0; k < N; ++k) w->states[k].x = boxplus(w->states[k].x, step.segment<15>(15 * static_cast<long>(k)));
     if (w->calibration) w->calibration = boxplus(*w->calibration, step.tail<15>());
+    for (const StructureGroup& g : groups) {
+      VectorXd dxi(6 * static_cast<long>(g.frames.size()));
+      for (std::size_t a = 0; a < g.frames.size(); ++a)
+        dxi.segment<6>(6 * static_cast<long>(a)) = g.A[a] * step.segment<6>(15 * static_cast<long>(g.reference)) +
+                                                   g.B[a] * step.segment<6>(15 * static_cast<long>(g.frames[a]));
+      updateInverseDepths(g.system, dxi, &w->states[g.reference].points);
+    }
     if (w->gauge != Gauge::kNone && !o.gauge_prior) reanchor(oldest, w);
     ++s.iterations;
     if (step.norm() < kNegligibleStep) {
@@ -540,8 +623,13 @@ void marginalize(Window* w, std::size_t k, const EstimatorOptions& o) {
   // measured in state k: from a reference that stays, they share its error
   // with the links that stay and come, so folding them in as independent
   // would count that error again in the prior.
+  // A tight link measured in state k is dropped whatever the option: its
+  // points stay, with the links that stay (DSO drops such residuals too).
   const bool drop_measured = o.front_marginalization_drops_links && k > 0;
-  const auto folded = [k, drop_measured](const VisualLink& l) { return !(drop_measured && l.n == k); };
+  const auto folded = [k, drop_measured, w](const VisualLink& l) {
+    if (l.n == k && l.r != k && isTight(*w, l)) return false;
+    return !(drop_measured && l.n == k);
+  };
   MarginalPrior prior = schurPrior(*w, k, folded, o);
   // Remove state k and every link that touched it; renumber.
   const auto renumber = [k](std::size_t i) { return i > k ? i - 1 : i; };
@@ -555,7 +643,7 @@ void marginalize(Window* w, std::size_t k, const EstimatorOptions& o) {
     }
   std::vector<VisualLink> visual;
   for (auto& l : w->visual)
-    if (l.r != k && l.n != k) visual.push_back({renumber(l.r), renumber(l.n), l.link});
+    if (l.r != k && l.n != k) visual.push_back({renumber(l.r), renumber(l.n), l.link, std::move(l.image)});
   for (auto& i : prior.states) i = renumber(i);
   w->inertial = std::move(inertial);
   w->visual = std::move(visual);

@@ -2,7 +2,9 @@
 // The sliding window of METHOD.md §5 as plain data and free functions.
 //
 // Cost (eq 13): ½‖prior‖² + ½ Σ r_Iᵀ P⁻¹ r_I + ½ Σ r_Vᵀ W_V r_V over the states'
-// 15-dimensional errors, minimised by Gauss-Newton (eqs 22-23). The prior
+// 15-dimensional errors, minimised by Gauss-Newton (eqs 22-23). A tight
+// tracking link (estimator.coupling) adds its keyframe's edge residuals
+// instead of r_V, its points' inverse depths eliminated (keyframe_structure.h). The prior
 // left by marginalisation is stored as a quadratic ½δᵀHδ + bᵀδ in the errors
 // δ = x ⊟ x0 of the states it involves, x0 being their estimates when it was
 // made. Marginalising a state folds every link that touches it, and the old
@@ -11,11 +13,13 @@
 // first prior it entered for as long as it stays in one, and every factor's
 // Jacobians with respect to it are taken there: the unobservable directions
 // (world translation, rotation about gravity) then stay out of the prior.
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "edgevio/estimator/estimator_options.h"
 #include "edgevio/estimator/factors.h"
+#include "edgevio/estimator/keyframe_structure.h"
 #include "edgevio/imu/preintegration.h"
 
 namespace edgevio::estimator {
@@ -29,6 +33,8 @@ struct WindowState {
   /// where this motion carried it over the offset's change since.
   double time_offset_s = 0.0;
   Vec3 gyro = Vec3::Zero();
+  /// A keyframe's reference points, when its tracking links are tight (estimator.coupling).
+  KeyframePoints points;
 };
 
 /// The camera-IMU calibration the window estimates beside its states
@@ -67,6 +73,10 @@ struct InertialLink {
 struct VisualLink {
   std::size_t r, n;
   RelativePoseLink link;
+  /// State n's edge pyramid, for a tight tracking link (estimator.coupling):
+  /// when set and state r has points, the window weighs the edge residuals
+  /// of r's points in it (keyframe_structure.h) instead of `link`.
+  std::shared_ptr<const vision::EdgePyramid> image;
 };
 
 struct MarginalPrior {

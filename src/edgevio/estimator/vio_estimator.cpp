@@ -45,7 +45,7 @@ VioEstimator::VioEstimator(const EstimatorOptions& options, const imu::ImuNoise&
 void VioEstimator::initialize(std::int64_t t_ns, const imu::NavState& x, bool velocity_known, bool attitude_known) {
   // The calibration's estimate outlives a restart; what the marginalised states said of it does not.
   window_ = Window{{}, {}, {}, {}, window_.T_b_c, window_.gauge, window_.calibration};
-  window_.states.push_back({t_ns, x, timeOffset(), Vec3::Zero()});
+  window_.states.push_back({t_ns, x, timeOffset(), Vec3::Zero(), {}});
   predicted_newest_ = x;
   // Initial prior (METHOD.md §5 initialisation): position and yaw are the
   // gauge and stay free. Roll and pitch, when known (from the mean
@@ -119,7 +119,7 @@ void VioEstimator::addState(std::int64_t t_ns, imu::Preintegration pre) {
   const std::size_t i = window_.states.size() - 1;
   predicted_newest_ = imu::predictState(window_.states[i].x, pre);
   window_.states.push_back(
-      {t_ns, predicted_newest_, timeOffset(), pre.lastGyro()});
+      {t_ns, predicted_newest_, timeOffset(), pre.lastGyro(), {}});
   window_.inertial.push_back({i, i + 1, std::move(pre)});
 }
 
@@ -128,17 +128,25 @@ void VioEstimator::addStateWithoutImu(std::int64_t t_ns, const SE3& T_w_b) {
   x.R_w_b = T_w_b.so3();
   x.p_w = T_w_b.translation();
   predicted_newest_ = x;
-  window_.states.push_back({t_ns, x});
+  window_.states.push_back({t_ns, x, 0.0, Vec3::Zero(), {}});
 }
 
-bool VioEstimator::addVisualLink(std::size_t r, std::size_t n, const SE3& T_nr, const Mat6& covariance) {
+bool VioEstimator::addVisualLink(std::size_t r, std::size_t n, const SE3& T_nr, const Mat6& covariance,
+                                 std::shared_ptr<const vision::EdgePyramid> image) {
   RelativePoseLink link;
   link.T_nr = T_nr;
   const Mat6 P = options_.visual_covariance_scale * covariance;
   link.information = P.ldlt().solve(Mat6::Identity());
   link.information = 0.5 * (link.information + link.information.transpose());
   if (!link.information.allFinite()) return false;
-  window_.visual.push_back({r, n, link});
+  window_.visual.push_back({r, n, link, options_.coupling == Coupling::kTight ? std::move(image) : nullptr});
+  return true;
+}
+
+bool VioEstimator::setKeyframePoints(std::int64_t t_ns, KeyframePoints points) {
+  const auto i = indexOf(t_ns);
+  if (!i) return false;
+  window_.states[*i].points = std::move(points);
   return true;
 }
 
@@ -153,14 +161,26 @@ bool VioEstimator::addLoopLink(std::int64_t t_ref_ns, std::int64_t t_new_ns, con
 }
 
 std::optional<ExternalCheckResult> VioEstimator::offerTrackingLink(std::int64_t t_ref_ns, const SE3& T_nr,
-                                                                   const Mat6& covariance) {
+                                                                   const Mat6& covariance,
+                                                                   std::shared_ptr<const vision::EdgePyramid> image) {
   const auto r = indexOf(t_ref_ns);
   if (!r || *r + 1 == window_.states.size()) return std::nullopt;
   ExternalCheckResult check;
   if (inertial_)
     check = externalCheck(T_nr, window_.states[*r].x, predicted_newest_, cameraExtrinsics(), options_.external_check_rotation_deg,
                           options_.external_check_translation_m);
-  if (check.accepted) addVisualLink(*r, window_.states.size() - 1, T_nr, covariance);
+  if (!check.accepted) return check;
+  const bool tight = image && !window_.states[*r].points.empty() && options_.coupling == Coupling::kTight;
+  addVisualLink(*r, window_.states.size() - 1, T_nr, covariance, std::move(image));
+  if (tight) {
+    // Edge residuals converge only near their minimum: the newest state
+    // starts where the alignment put its camera, not at the IMU's prediction.
+    const SE3 T_b_c = cameraExtrinsics();
+    const imu::NavState& xr = window_.states[*r].x;
+    const SE3 T_w_bn = SE3(xr.R_w_b, xr.p_w) * T_b_c * T_nr.inverse() * T_b_c.inverse();
+    window_.states.back().x.R_w_b = T_w_bn.so3();
+    window_.states.back().x.p_w = T_w_bn.translation();
+  }
   return check;
 }
 

@@ -16,6 +16,7 @@
 // and loop links only, and the gauge holds the oldest state's whole pose.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -115,7 +116,14 @@ class VioEstimator {
   /// external check passes against the IMU prediction of the newest state
   /// (without the IMU it always enters).
   /// nullopt when the reference state is not in the window (any more).
-  std::optional<ExternalCheckResult> offerTrackingLink(std::int64_t t_ref_ns, const geometry::SE3& T_nr, const Mat6& covariance);
+  /// With estimator.coupling tight, `image` is the newest frame's pyramid:
+  /// the link enters as edge residuals when its reference state has points.
+  std::optional<ExternalCheckResult> offerTrackingLink(std::int64_t t_ref_ns, const geometry::SE3& T_nr, const Mat6& covariance,
+                                                       std::shared_ptr<const vision::EdgePyramid> image = nullptr);
+
+  /// A keyframe's reference points for its tight links (estimator.coupling);
+  /// false when its state is not in the window.
+  bool setKeyframePoints(std::int64_t t_ns, KeyframePoints points);
 
   /// Gauss-Newton on the window, then marginalisation when it holds more
   /// than N states (the two-way rule: `alignment_good`, `keyframes`). When
@@ -142,7 +150,8 @@ class VioEstimator {
   /// Up to `iterations` Gauss-Newton iterations of the frame's solve (0: the newest state alone), then the health check.
   void iterate(int iterations, const geometry::SE3& restart_pose, EstimatorUpdate* u);
   void restartAfterBlowUp(const geometry::SE3& pose);
-  bool addVisualLink(std::size_t r, std::size_t n, const geometry::SE3& T_nr, const Mat6& covariance);
+  bool addVisualLink(std::size_t r, std::size_t n, const geometry::SE3& T_nr, const Mat6& covariance,
+                     std::shared_ptr<const vision::EdgePyramid> image = nullptr);
   /// The state two-way marginalisation removes (METHOD.md §5).
   std::size_t marginalizationVictim(bool alignment_good, const KeyframeQuery& keyframes) const;
 

@@ -131,7 +131,7 @@ void Odometry::processInWindow(tracking::PreparedFrame frame, FrameRecord* r) {
     estimator_->addState(t, std::move(*pre));
   else
     estimator_->addStateWithoutImu(t, tracked.T_w_b);
-  const bool link_good = offerLink(r);
+  const bool link_good = offerLink(frame, r);
   // A rejected link is dropped and the frame becomes a keyframe (METHOD.md
   // §5); so does a frame whose keyframe is no longer in the window.
   const KeyframeReason why = tracked.vote == KeyframeReason::kNone && r->selfCheckPassed() && !link_good
@@ -245,9 +245,13 @@ Odometry::Tracked Odometry::track(const tracking::PreparedFrame& frame, const tr
   return t.passed() ? Tracked{t.T_w_b, t.keyframe_vote} : Tracked{p.T_w_b, KeyframeReason::kSelfCheckFailed};
 }
 
-bool Odometry::offerLink(FrameRecord* r) {
+bool Odometry::offerLink(const tracking::PreparedFrame& frame, FrameRecord* r) {
   if (!r->selfCheckPassed()) return false;
-  const auto check = estimator_->offerTrackingLink(r->reference_t_ns, r->alignment.T_nr, r->alignment.covariance);
+  // A tight link keeps the frame's pyramid (its images share the frame's pixels).
+  std::shared_ptr<const vision::EdgePyramid> image;
+  if (config_.estimator.coupling == estimator::Coupling::kTight) image = std::make_shared<const vision::EdgePyramid>(frame.pyramid);
+  const auto check =
+      estimator_->offerTrackingLink(r->reference_t_ns, r->alignment.T_nr, r->alignment.covariance, std::move(image));
   if (check) r->external = *check;
   if (mode_.imu) r->external_check = !check ? ExternalCheck::kNoReference : check->accepted ? ExternalCheck::kAccepted : ExternalCheck::kRejected;
   return check && check->accepted;
@@ -282,6 +286,11 @@ void Odometry::makeKeyframeData(FrameRecord* r) {
   std::shared_ptr<const tracking::KeyframeData> data = tracker_.makeKeyframe(std::move(*unmade_keyframe_));
   unmade_keyframe_.reset();
   r->bm_ms += data->depth.bm_ms;
+  const estimator::EstimatorOptions& o = config_.estimator;
+  if (windowed() && o.coupling == estimator::Coupling::kTight && !data->pyramid.levels.empty())
+    estimator_->setKeyframePoints(
+        data->t_ns, estimator::selectKeyframePoints(data->depth, data->pyramid.levels.front().camera, o.tight_points,
+                                                    o.tight_disparity_sigma_px, config_.alignment.max_normal_angle_deg));
   if (data->right_image_unreadable) r->events.push_back("right image unreadable: keyframe without depth");
   keyframes_.setData(std::move(data));
 }

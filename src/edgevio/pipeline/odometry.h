@@ -97,7 +97,7 @@ class Odometry {
   /// Aligns the frame to the current keyframe, promoting the previous frame when that fails.
   Tracked track(const tracking::PreparedFrame& frame, const tracking::Prediction& p, FrameRecord* r);
   /// Offers the frame's tracking link to the window; true when it entered.
-  bool offerLink(FrameRecord* r);
+  bool offerLink(const tracking::PreparedFrame& frame, FrameRecord* r);
   /// Makes the frame a keyframe (or keeps it as the previous frame when `why` is kNone).
   void decideKeyframe(tracking::PreparedFrame frame, const geometry::SE3& T_w_b, tracking::KeyframeReason why, FrameRecord* r);
   void addKeyframe(tracking::PreparedFrame frame, const geometry::SE3& T_w_b, tracking::KeyframeReason why, FrameRecord* r);

@@ -152,15 +152,17 @@ Vec2 mapEdgeNormal(const Vec3& P, const Vec2& n_ref, const SE3& T, const vision:
 }
 
 bool edgeResidual(const Vec3& P, const SE3& T, const vision::LevelCamera& c, const vision::DistanceTransform& dt,
-                  int border, double* r, Jacobian16* J, bool point_to_line, double* distance) {
+                  int border, double* r, Jacobian16* J, bool point_to_line, double* distance, const Eigen::Vector2f* n_ref,
+                  double* normal_cos) {
   const LevelProjection Tc(T, c);
   Projected p;
   if (!projectInside(P, Tc, c.width, c.height, border, J != nullptr, &p)) return false;
   const bool p2l = point_to_line && dt.hasLines();
-  const PointResidual res = pointResidual(p, sample(p, dt, p2l), Tc, J != nullptr, p2l, nullptr);
+  const PointResidual res = pointResidual(p, sample(p, dt, p2l), Tc, J != nullptr, p2l, n_ref);
   *r = res.r;
   if (J) *J = res.J;
   if (distance) *distance = res.distance;
+  if (normal_cos) *normal_cos = res.normal_cos;
   return true;
 }
 

@@ -44,9 +44,12 @@ bool projectWithJacobian(const Vec3& P, const geometry::SE3& T, const vision::Le
 /// With `point_to_line` (and lines in `dt`) υ is the signed distance to the
 /// nearest edge line, (u − e)·n, and ∂υ/∂ξ = nᵀ ∂u/∂ξ; else υ = V(u) (eq 5).
 /// `distance` (optional) receives V(u) either way, for the self check.
+/// With `n_ref` (the point's edge normal in the keyframe; point-to-line
+/// only), `normal_cos` receives the cosine of the normal check (1 unchecked).
 bool edgeResidual(const Vec3& P, const geometry::SE3& T, const vision::LevelCamera& cam,
                   const vision::DistanceTransform& dt, int border, double* r, Jacobian16* J,
-                  bool point_to_line = false, double* distance = nullptr);
+                  bool point_to_line = false, double* distance = nullptr, const Eigen::Vector2f* n_ref = nullptr,
+                  double* normal_cos = nullptr);
 
 /// The unit normal, in the current image, of the edge through P whose normal
 /// in the keyframe's image is n_ref (the signed grey-level gradient

@@ -71,6 +71,7 @@ cv::Mat depthDiscontinuities(const cv::Mat& rho, const cv::Mat& var, const Visio
 KeyframeDepth computeKeyframeDepth(const EdgePyramid& left, const cv::Mat& right_full, double baseline_m,
                                    const VisionOptions& o) {
   KeyframeDepth out;
+  out.baseline_m = baseline_m;
   const auto t0 = std::chrono::steady_clock::now();
   cv::Mat rho, var;  // inverse depth and its variance per level-0 pixel; a variance of 0 marks an invalid pixel
   const double fb0 = left.levels[0].camera.fx * baseline_m;

@@ -35,6 +35,7 @@ struct KeyframeDepth {
   /// point's edge in the keyframe's image, where the level has edge lines
   /// (level 0); empty on the other levels.
   std::vector<std::vector<Eigen::Vector2f>> normals;
+  double baseline_m = 0.0;  ///< the stereo baseline b of ρ = d/(f·b)
   double bm_ms = 0.0;
 };
 
