@@ -171,8 +171,7 @@ std::optional<ExternalCheckResult> VioEstimator::offerTrackingLink(std::int64_t 
                           options_.external_check_translation_m);
   if (!check.accepted) return check;
   const bool tight = image && !window_.states[*r].points.empty() && options_.coupling == Coupling::kTight;
-  addVisualLink(*r, window_.states.size() - 1, T_nr, covariance, std::move(image));
-  if (tight) {
+  if (addVisualLink(*r, window_.states.size() - 1, T_nr, covariance, std::move(image)) && tight) {
     // Edge residuals converge only near their minimum: the newest state
     // starts where the alignment put its camera, not at the IMU's prediction.
     const SE3 T_b_c = cameraExtrinsics();
