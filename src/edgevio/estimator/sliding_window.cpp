@@ -583,6 +583,7 @@ MarginalPrior schurPrior(const Window& w, std::size_t k, Folded folded, const Es
             [&](const VisualLink& l) { return (l.r == k || l.n == k) && folded(l); }, &n);
   // Schur complement on the first 15 rows/columns (state k).
   const long m = 15, r = n.H.rows() - m;
+  if (r == 0) return MarginalPrior{};  // nothing links state k to another (a tight link dropped, no IMU): nothing to keep
   const MatrixXd Hmm = n.H.topLeftCorner(m, m), Hrm = n.H.bottomLeftCorner(r, m), Hrr = n.H.bottomRightCorner(r, r);
   const Eigen::LDLT<MatrixXd> Hmm_ldlt(Hmm + MatrixXd::Identity(m, m) * kMarginalRegulariser);
   MarginalPrior prior;
