@@ -6,8 +6,7 @@ using geometry::SE3;
 
 ExternalCheckResult externalCheck(const SE3& T_nr_measured, const imu::NavState& r, const imu::NavState& n_pred,
                                   const SE3& T_b_c, double max_rotation_deg, double max_translation_m) {
-  const SE3 C_r = SE3(r.R_w_b, r.p_w) * T_b_c, C_n = SE3(n_pred.R_w_b, n_pred.p_w) * T_b_c;
-  const SE3 T_nr_pred = C_n.inverse() * C_r;
+  const SE3 T_nr_pred = predictedRelativePose(r, n_pred, T_b_c);
   const SE3 E = T_nr_pred.inverse() * T_nr_measured;
   ExternalCheckResult res;
   res.rotation_deg = geometry::angle(E.so3()) * kRadToDeg;

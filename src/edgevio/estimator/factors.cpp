@@ -6,11 +6,14 @@ namespace edgevio::estimator {
 
 using geometry::SE3;
 
+SE3 predictedRelativePose(const imu::NavState& r, const imu::NavState& n, const SE3& T_b_c) {
+  return T_b_c.inverse() * SE3(n.R_w_b, n.p_w).inverse() * SE3(r.R_w_b, r.p_w) * T_b_c;
+}
+
 Vec6 relativePoseResidual(const SE3& T_meas, const imu::NavState& r, const imu::NavState& n, const SE3& T_b_c,
                           Mat6x15* J_r, Mat6x15* J_n, Mat6* J_extrinsics) {
-  const SE3 X_r(r.R_w_b, r.p_w), X_n(n.R_w_b, n.p_w);
   const SE3 A = T_b_c.inverse();
-  const SE3 T_pred = A * X_n.inverse() * X_r * T_b_c;
+  const SE3 T_pred = predictedRelativePose(r, n, T_b_c);
   const Vec6 res = (T_meas.inverse() * T_pred).log();
   if (J_r || J_n || J_extrinsics) {
     const Mat6 JrInv = SE3::rightJacobianInverse(res);

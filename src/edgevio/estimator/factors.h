@@ -18,7 +18,11 @@ struct RelativePoseLink {
   Mat6 information = Mat6::Identity();
 };
 
-/// r = Log(T_meas⁻¹ · T_pred), T_pred = (T_w_bn T_b_c)⁻¹ (T_w_br T_b_c), and its
+/// T_nr of two states' cameras as the states predict it:
+/// (T_w_bn T_b_c)⁻¹ (T_w_br T_b_c) = T_c_b X_n⁻¹ X_r T_b_c.
+geometry::SE3 predictedRelativePose(const imu::NavState& r, const imu::NavState& n, const geometry::SE3& T_b_c);
+
+/// r = Log(T_meas⁻¹ · T_pred), T_pred = predictedRelativePose(r, n, T_b_c), and its
 /// Jacobians with respect to the 15-dimensional errors of states r and n.
 /// Derivation: with A = T_c_b, T_pred = A X_n⁻¹ X_r A⁻¹; X_r·Exp(ξ) gives
 /// T_pred·Exp(Ad_A ξ) and X_n·Exp(ξ) gives T_pred·Exp(−Ad_{T_pred⁻¹} Ad_A ξ), so

@@ -190,11 +190,6 @@ struct SharedError {
 /// Whether the window weighs a link by its edge residuals (Coupling::kTight).
 bool isTight(const Window& w, const VisualLink& l) { return l.image && !w.states[l.r].points.empty(); }
 
-/// T_nr of two states' cameras: (T_w_bn T_b_c)⁻¹ (T_w_br T_b_c).
-geometry::SE3 relativePose(const NavState& r, const NavState& n, const geometry::SE3& T_b_c) {
-  return (geometry::SE3(n.R_w_b, n.p_w) * T_b_c).inverse() * (geometry::SE3(r.R_w_b, r.p_w) * T_b_c);
-}
-
 /// One keyframe's tight links as linearised: its points' system over the
 /// links' twists, and each twist's Jacobians with respect to the (δp, δθ) of
 /// the keyframe's state (A) and of the frame's (B): ξ_a = A_a δx_r + B_a δx_{n_a}.
@@ -264,7 +259,7 @@ void addStructure(const Window& w, const EstimatorOptions& o, const std::vector<
   grp.reference = reference;
   std::vector<StructureLink> at;
   for (const VisualLink* l : links) {
-    at.push_back({relativePose(w.states[l->r].x, w.states[l->n].x, T_b_c), l->image.get()});
+    at.push_back({predictedRelativePose(w.states[l->r].x, w.states[l->n].x, T_b_c), l->image.get()});
     grp.frames.push_back(l->n);
   }
   grp.system = linearizeStructure(w.states[reference].points, at, {o.tight_pixel_sigma_px, o.tight_huber_px}, n->cost_only);
@@ -272,7 +267,7 @@ void addStructure(const Window& w, const EstimatorOptions& o, const std::vector<
   if (n->cost_only) return;
   for (const std::size_t f : grp.frames) {
     Mat6x15 Jr, Jn;
-    relativePoseResidual(relativePose(*jp[reference], *jp[f], T_b_c), *jp[reference], *jp[f], T_b_c, &Jr, &Jn);
+    relativePoseResidual(predictedRelativePose(*jp[reference], *jp[f], T_b_c), *jp[reference], *jp[f], T_b_c, &Jr, &Jn);
     grp.A.push_back(Jr.leftCols<6>());
     grp.B.push_back(Jn.leftCols<6>());
   }
