@@ -83,15 +83,23 @@ void exactDistanceTransform(const cv::Mat& edges, float far, cv::Mat* dist, cv::
       if (nr) std::fill(nr, nr + W, -1);
       continue;
     }
+    // Parabola j is the lowest at the pixels u with from[j] < u ≤ from[j + 1]:
+    // one span of the row each, filled without a test per pixel.
     from[static_cast<std::size_t>(k) + 1] = std::numeric_limits<double>::infinity();
-    std::size_t j = 0;
-    for (int u = 0; u < W; ++u) {
-      while (from[j + 1] < u) ++j;
-      const int q = apex[j];
-      dr[u] = static_cast<float>((u - q) * (u - q) + gr[q] * gr[q]);
-      if (nr) nr[u] = row[at(v) + static_cast<std::size_t>(q)] * W + q;
+    int u = 0;
+    for (std::size_t j = 0; u < W; ++j) {
+      const double end = from[j + 1];
+      // floor(end), clamped to the row (a cast truncates towards zero).
+      const int last = end >= W - 1 ? W - 1 : end < 0 ? -1 : static_cast<int>(end);
+      if (last < u) continue;
+      const int q = apex[j], g2 = gr[q] * gr[q];
+      if (nr) {
+        const int nearest_index = row[at(v) + static_cast<std::size_t>(q)] * W + q;
+        for (int x = u; x <= last; ++x) nr[x] = nearest_index;
+      }
+      for (; u <= last; ++u) dr[u] = static_cast<float>((u - q) * (u - q) + g2);
     }
-    for (int u = 0; u < W; ++u) dr[u] = std::sqrt(dr[u]);  // a separate loop, so that it vectorises
+    for (int x = 0; x < W; ++x) dr[x] = std::sqrt(dr[x]);  // a separate loop, so that it vectorises
   }
 }
 
