@@ -92,5 +92,49 @@ TEST(DistanceTransform, EdgeLinesAreSubPixelAndNormal) {
   EXPECT_NEAR(std::abs(n.x()), 1.0, 1e-3);
 }
 
+/// RMS distance [px] of the sub-pixel lines from the true edge, over the edge
+/// pixels of `images` anti-aliased straight edges (8x8 supersampled, a step
+/// of 120 grey levels, blurred with σ = 1 px) at random angles and offsets.
+double edgeLineRmsError(int images, std::uint64_t seed) {
+  sim::Rng rng(seed);
+  constexpr int kSize = 80, kSuper = 8;
+  double sum_sq = 0;
+  int count = 0;
+  for (int i = 0; i < images; ++i) {
+    const double angle = rng.uniform() * M_PI, nx = std::cos(angle), ny = std::sin(angle);
+    const double c = 40 + rng.uniform();  // the edge: nx·x + ny·y = c
+    cv::Mat img(kSize, kSize, CV_32F);
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        int inside = 0;
+        for (int a = 0; a < kSuper; ++a)
+          for (int b = 0; b < kSuper; ++b)
+            inside += nx * (x - 0.5 + (a + 0.5) / kSuper) + ny * (y - 0.5 + (b + 0.5) / kSuper) > c;
+        img.at<float>(y, x) = static_cast<float>(60 + 120.0 * inside / (kSuper * kSuper));
+      }
+    cv::GaussianBlur(img, img, cv::Size(0, 0), 1.0);
+    cv::Mat img8, edges;
+    img.convertTo(img8, CV_8U);
+    cv::Canny(img8, edges, 20, 40, 3, true);
+    const DistanceTransform dt(edges, img8);
+    for (int y = 20; y < 60; ++y)
+      for (int x = 20; x < 60; ++x) {
+        if (!edges.at<std::uint8_t>(y, x)) continue;
+        Vec2 p, n;
+        dt.nearestLine(x, y, &p, &n);
+        const double d = nx * p.x() + ny * p.y() - c;
+        sum_sq += d * d;
+        ++count;
+      }
+  }
+  return count > 0 ? std::sqrt(sum_sq / count) : 1e9;
+}
+
+TEST(DistanceTransform, EdgeLinesLieWithinATwentiethOfAPixelOfStraightEdges) {
+  // 120 edges: 0.032-0.042 px over seeds 1-8 (a parabola through bilinear
+  // samples of the magnitude at ±1 px along n instead: 0.050-0.063 px).
+  EXPECT_LT(edgeLineRmsError(120, 1), 0.047);
+}
+
 }  // namespace
 }  // namespace edgevio::vision

@@ -6,8 +6,9 @@
 // bilinearly. V is the paper's residual.
 //
 // Given the image, it also keeps for every pixel its nearest edge as a line:
-// the edge pixel refined to sub-pixel along its gradient (parabola through the
-// gradient magnitude at ±1 px) and its unit normal n. The signed distance
+// the edge pixel refined to sub-pixel along its gradient (the maximum along n
+// of a quadratic fitted to the gradient magnitude's 3x3 neighbourhood) and its
+// unit normal n. The signed distance
 // (u − e)·n to that line is linear near the edge, where V has a non-smooth tip
 // whose central-difference gradient vanishes, and it is free of the ±0.5 px
 // quantisation of Canny's edges (see AlignmentOptions::residual).
