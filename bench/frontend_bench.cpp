@@ -90,6 +90,16 @@ void BM_EdgeLinesLevel0(benchmark::State& state) {
 }
 BENCHMARK(BM_EdgeLinesLevel0)->Unit(benchmark::kMillisecond);
 
+// The pyramid thread's whole work per frame: halving, Canny, distance
+// transforms and the level-0 edge lines, from the rectified 752x480 image.
+void BM_EdgePyramid(benchmark::State& state) {
+  const Data& d = data();
+  const vision::VisionOptions vo;
+  for (auto _ : state) benchmark::DoNotOptimize(vision::buildEdgePyramid(d.cur_left, d.fx.rect->rectifiedCamera(), vo));
+  state.SetLabel("buildEdgePyramid: 4 levels from 752x480 (the pyramid thread per frame)");
+}
+BENCHMARK(BM_EdgePyramid)->Unit(benchmark::kMillisecond);
+
 void BM_StereoBlockMatching(benchmark::State& state) {
   const Data& d = data();
   const vision::VisionOptions vo;

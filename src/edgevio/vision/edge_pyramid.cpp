@@ -12,12 +12,13 @@ LevelCamera LevelCamera::half() const {
 }
 
 cv::Mat downsample2(const cv::Mat& image) {
-  cv::Mat out(image.rows / 2, image.cols / 2, CV_8UC1);
-  for (int v = 0; v < out.rows; ++v) {
+  const int W = image.cols / 2, H = image.rows / 2;  // locals: a store to `o` cannot change them, so the loop vectorises
+  cv::Mat out(H, W, CV_8UC1);
+  for (int v = 0; v < H; ++v) {
     const std::uint8_t* a = image.ptr<std::uint8_t>(2 * v);
     const std::uint8_t* b = image.ptr<std::uint8_t>(2 * v + 1);
     std::uint8_t* o = out.ptr<std::uint8_t>(v);
-    for (int u = 0; u < out.cols; ++u)
+    for (int u = 0; u < W; ++u)
       o[u] = static_cast<std::uint8_t>((a[2 * u] + a[2 * u + 1] + b[2 * u] + b[2 * u + 1] + 2) / 4);
   }
   return out;
