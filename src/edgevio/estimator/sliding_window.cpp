@@ -478,7 +478,7 @@ SolveSummary solve(Window* w, const EstimatorOptions& o) {
   Normal n(windowBlocks(*w));
   std::vector<StructureGroup> groups;
   for (int it = 0; it < o.max_iterations; ++it) {
-    n.reset();
+    if (it > 0) n.reset();  // constructed zero
     groups.clear();
     linearize(*w, o, slots, static_cast<long>(N), Priors::kBoth, [](const InertialLink&) { return true; },
               [](const VisualLink&) { return true; }, &n, &groups);
@@ -540,7 +540,7 @@ SolveSummary solveNewest(Window* w, const EstimatorOptions& o) {
   };
   Normal n(blocks);
   for (int it = 0; it < o.max_iterations; ++it) {
-    n.reset();
+    if (it > 0) n.reset();  // constructed zero
     linearizeNewest(&n);
     if (it == 0) s.initial_cost = n.cost;
     // Every other block held: the newest state's rows and columns alone.
