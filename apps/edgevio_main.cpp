@@ -53,6 +53,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--mode", run.mode, "edge+imu+loop (default, the full system) | edge+imu | edge+loop | edge-only");
   run_cmd->add_option("--config", run.config, "Config file (YAML)");
   run_cmd->add_option("--skip", run.skip, "Keep every (K+1)-th stereo frame (the IMU is untouched)");
+  run_cmd->add_option("--skip-offset", run.skip_offset,
+                      "With --skip K, start at frame P (0..K): the K+1 offsets together use every frame once (default 0)");
   run_cmd->add_flag("--realtime", run.realtime, "Play the dataset at sensor rate, dropping frames when behind");
   run_cmd->add_option("--pictures-every", run.pictures_every,
                       "Keep the alignment picture of every Nth frame besides the eventful ones (default 10; 0: none)");

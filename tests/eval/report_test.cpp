@@ -67,8 +67,9 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
             "\"realtime_factor\": 7.5, \"latency_ms\": {\"p50\": 12.5, \"p99\": 40.25, \"max\": 51}, \"lost_intervals\": "
             "[{\"start_s\": 2, \"end_s\": 2.5, \"reason\": \"a\"}, {\"start_s\": 10, \"end_s\": 11, \"reason\": \"b\"}], "
             "\"frames\": 397, \"frames_to_process\": 400, \"unaccounted_frames\": 2}");
-  // failed run
-  dir.write("seqA/edge-only/summary.json", "{\"mode\": \"edge-only\", \"sequence\": \"seqA\", \"failed\": true}");
+  // failed run, of the odd frames
+  dir.write("seqA/edge-only/summary.json",
+            "{\"mode\": \"edge-only\", \"sequence\": \"seqA\", \"failed\": true, \"skip\": 1, \"skip_offset\": 1}");
   // run without ground truth
   io::writeTrajectoryTum(dir.file("seqB/trajectory_tum.txt"), circle(0));
   // run whose estimate has no overlap with its ground truth
@@ -91,13 +92,14 @@ TEST(Report, BatchMarksFailuresAndEvaluatesTheRest) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find(" | 397/400 | 400 | "), std::string::npos) << md;
-  EXPECT_NE(md.find("| seqA | edge-only | **FAILED**"), std::string::npos) << md;
+  EXPECT_NE(md.find("| seqA | edge-only, skip 1 from frame 1 | **FAILED**"), std::string::npos) << md;
   EXPECT_NE(md.find("no ground truth"), std::string::npos) << md;
   EXPECT_NE(md.find("no timestamp overlap"), std::string::npos) << md;
   EXPECT_NE(csv.find("seqA,edge+imu,seqA/edge+imu,ok,,400,se3,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",7.50,0,,12.50,40.25,2,1.500,3,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",7.50,0,0,,12.50,40.25,2,1.500,3,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",1.000,397,400,2\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",0,,,,0,0.000,0,,0.000,,,\n"), std::string::npos) << csv;  // a summary without them: empty fields, nothing lost
+  EXPECT_NE(csv.find(",0,0,,,,0,0.000,0,,0.000,,,\n"), std::string::npos) << csv;  // a summary without them: empty fields, nothing lost
+  EXPECT_NE(csv.find(",1,1,,,,0,0.000,"), std::string::npos) << csv;  // skip and skip_offset of the failed run
 }
 
 TEST(Report, SegmentsBetweenLossesAreEvaluatedAlone) {

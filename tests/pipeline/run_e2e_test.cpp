@@ -471,6 +471,49 @@ TEST(Run, SkipKeepsEveryKPlusOneFrame) {
   EXPECT_FALSE(s.failed) << s.failure;
 }
 
+/// `folder` without its first stereo pair: links to everything but the
+/// cameras' data.csv, which lose their first row.
+std::string withoutFirstFrame(const std::string& folder, const TempDir& out) {
+  namespace fs = std::filesystem;
+  const fs::path copy = fs::path(out.path()) / "without_first_frame";
+  for (const auto& e : fs::directory_iterator(fs::path(folder) / "mav0")) {
+    const fs::path to = copy / "mav0" / e.path().filename();
+    fs::create_directories(to.parent_path());
+    if (e.path().filename() != "cam0" && e.path().filename() != "cam1") {
+      fs::create_directory_symlink(e.path(), to);
+      continue;
+    }
+    fs::create_directory(to);
+    for (const auto& f : fs::directory_iterator(e.path()))
+      if (f.path().filename() != "data.csv") fs::create_symlink(f.path(), to / f.path().filename());
+    std::istringstream in(test::readFile((e.path() / "data.csv").string()));
+    std::ofstream csv(to / "data.csv");
+    std::string line;
+    bool dropped = false;
+    while (std::getline(in, line)) {
+      if (!dropped && !line.empty() && line[0] != '#') {
+        dropped = true;
+        continue;
+      }
+      csv << line << "\n";
+    }
+  }
+  return copy.string();
+}
+
+TEST(Run, SkipOffsetRunsTheFramesAFolderWithoutTheFirstOnesWould) {
+  TempDir a, b, copy_dir;
+  RunRequest odd = request(simulated().dataset, a.path(), kFull, 1);
+  odd.skip_offset = 1;
+  const RunSummary s = run(odd, Config{});
+  EXPECT_EQ(s.frames, 40u);  // 81 frames: 1, 3, ..., 79
+  EXPECT_EQ(s.skip_offset, 1);
+  run(request(withoutFirstFrame(simulated().dataset, copy_dir), b.path(), kFull, 1), Config{});
+  EXPECT_FALSE(test::readFile(a.file("trajectory.csv")).empty());
+  for (const char* file : {"trajectory.csv", "trajectory_imu_rate_tum.txt"})
+    EXPECT_TRUE(test::readFile(a.file(file)) == test::readFile(b.file(file))) << file << " differs from the one without the first frame";
+}
+
 // --- One pipeline, two sources: a bag runs as the folder it was made from ----------
 
 /// Runs `folder` and the bag made from it (its calibration read from the

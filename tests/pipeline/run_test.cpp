@@ -25,6 +25,12 @@ TEST(Run, BadInputIsAnError) {
   const Mode edge_only{false, false};
   EXPECT_THROW(run({out.file("missing"), out.file("o"), edge_only}, Config{}), InputError);
   EXPECT_THROW(run({mini, out.file("o"), edge_only, -1}, Config{}), InputError);
+  // Offsets outside 0..skip, and one past the mini dataset's 5 frames.
+  for (const auto& [skip, offset] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{1, -1}, std::pair{5, 5}}) {
+    RunRequest r(mini, out.file("o"), edge_only, skip);
+    r.skip_offset = offset;
+    EXPECT_THROW(run(r, Config{}), InputError) << "skip " << skip << ", offset " << offset;
+  }
   Config bad;
   bad.alignment.max_iterations_per_level = 0;
   EXPECT_THROW(run({mini, out.file("o"), edge_only}, bad), InputError);

@@ -3,6 +3,7 @@
 // MATRIX.yaml (relative paths are relative to the matrix file's folder):
 //   modes: [edge-only, edge+imu+loop]     # any of the four
 //   skips: [0, 3]                         # --skip values
+//   skip_offsets: all                     # first (default): from frame 0; all: each K from frames 0..K too
 //   config: my.yaml                       # optional, for every run
 //   sequences:
 //     - {name: agg, scenario: aggressive, duration: 20, seed: 3}                 # rendered once
@@ -62,13 +63,20 @@ struct MatrixSequence {
 /// The tables of DIR/tables.md (`tables:` in the matrix).
 enum class Table { kAteByMode, kAteBySkip, kTime };
 inline constexpr options::Choice<Table> kTableChoices[] = {
-    {Table::kAteByMode, "ate_by_mode", "ATE per sequence and mode, seeds side by side, at the first skip"},
-    {Table::kAteBySkip, "ate_by_skip", "ATE per sequence and mode against the frame skip"},
+    {Table::kAteByMode, "ate_by_mode", "ATE per sequence and mode, seeds side by side, at the first skip from frame 0"},
+    {Table::kAteBySkip, "ate_by_skip", "ATE per sequence and mode against the frame skip (offsets side by side)"},
     {Table::kTime, "time", "time per component and real-time factor of every run"}};
+
+/// Which of the K+1 interleaved frame subsets a skip K runs (`skip_offsets:`).
+enum class SkipOffsets { kFirst, kAll };
+inline constexpr options::Choice<SkipOffsets> kSkipOffsetChoices[] = {
+    {SkipOffsets::kFirst, "first", "from frame 0 only"},
+    {SkipOffsets::kAll, "all", "from each of frames 0..K too: together they use every frame once"}};
 
 struct Matrix {
   std::vector<std::string> modes = {"edge+imu+loop"};
   std::vector<int> skips = {0};
+  SkipOffsets skip_offsets = SkipOffsets::kFirst;
   std::string config;  ///< for every run; empty: defaults
   std::vector<MatrixSequence> sequences;
   std::vector<Table> tables = {Table::kAteByMode, Table::kAteBySkip};
@@ -78,7 +86,7 @@ struct Job {
   std::string folder;   ///< run folder
   std::string command;  ///< one shell command line
   std::string sequence, group, mode;
-  int skip = 0;
+  int skip = 0, skip_offset = 0;
 };
 
 /// The `simulate` command line of a rendered sequence entry.
@@ -177,6 +185,9 @@ Matrix readMatrix(const std::string& matrix_path, const std::string& out, const 
       matrix.skips.push_back(k);
     }
   }
+  if (const YAML::Node n = m["skip_offsets"];
+      n && (!n.IsScalar() || !options::parseChoice(kSkipOffsetChoices, n.Scalar(), &matrix.skip_offsets)))
+    throw InputError(matrix_path, yamlLine(n), "skip_offsets: one of " + options::choiceList(kSkipOffsetChoices));
   if (m["tables"]) {
     matrix.tables.clear();
     for (const auto& n : m["tables"]) {
@@ -198,17 +209,20 @@ std::vector<Job> planJobs(const Matrix& matrix, const std::string& out, const st
   std::vector<Job> jobs;
   for (const MatrixSequence& s : matrix.sequences)
     for (const std::string& mode : matrix.modes)
-      for (int k : matrix.skips) {
-        const fs::path folder = fs::absolute(out) / "runs" / s.name / (mode + "-skip" + std::to_string(k));
-        // No alignment pictures: a matrix's runs are for its tables, and
-        // their times stay those of the estimator alone.
-        std::string run = quote(exe) + " run " + quote(s.dataset) + " --out " + quote(folder.string()) + " --mode " + quote(mode) +
-                          " --skip " + std::to_string(k) + " --pictures-every 0";
-        if (!matrix.config.empty()) run += " --config " + quote(matrix.config);
-        jobs.push_back({folder.string(),
-                        s.prepare + "mkdir -p " + quote(folder.string()) + " && " + run + " > " + quote(folder.string() + "/run.log") + " 2>&1",
-                        s.name, s.group, mode, k});
-      }
+      for (int k : matrix.skips)
+        for (int p = 0; p <= (matrix.skip_offsets == SkipOffsets::kAll ? k : 0); ++p) {
+          const std::string offset = p > 0 ? "-from" + std::to_string(p) : "";
+          const fs::path folder = fs::absolute(out) / "runs" / s.name / (mode + "-skip" + std::to_string(k) + offset);
+          // No alignment pictures: a matrix's runs are for its tables, and
+          // their times stay those of the estimator alone.
+          std::string run = quote(exe) + " run " + quote(s.dataset) + " --out " + quote(folder.string()) + " --mode " + quote(mode) +
+                            " --skip " + std::to_string(k) + (p > 0 ? " --skip-offset " + std::to_string(p) : "") + " --pictures-every 0";
+          if (!matrix.config.empty()) run += " --config " + quote(matrix.config);
+          jobs.push_back({folder.string(),
+                          s.prepare + "mkdir -p " + quote(folder.string()) + " && " + run + " > " + quote(folder.string() + "/run.log") +
+                              " 2>&1",
+                          s.name, s.group, mode, k, p});
+        }
   return jobs;
 }
 
@@ -244,27 +258,39 @@ void writeAteByMode(std::ostream& out, const Matrix& matrix, const std::vector<J
     for (const std::string& mode : matrix.modes) {
       std::string cell;
       for (const Job& j : jobs)
-        if (j.group == g && j.mode == mode && j.skip == matrix.skips[0]) cell += (cell.empty() ? "" : " / ") + ateCell(runOf(j, runs, runs_dir));
+        if (j.group == g && j.mode == mode && j.skip == matrix.skips[0] && j.skip_offset == 0)
+          cell += (cell.empty() ? "" : " / ") + ateCell(runOf(j, runs, runs_dir));
       out << " " << cell << " |";
     }
     out << "\n";
   }
 }
 
-/// ATE [m] per sequence and mode against the frame skip K.
+/// ATE [m] per sequence and mode against the frame skip K (with
+/// `skip_offsets: all`, the runs from frames 0..K side by side).
 void writeAteBySkip(std::ostream& out, const Matrix& matrix, const std::vector<Job>& jobs, const std::vector<eval::RunEvaluation>& runs,
                     const std::string& runs_dir) {
   out << "\n| sequence | mode |";
-  for (int k : matrix.skips) out << " K=" << k << " |";
+  for (int k : matrix.skips) {
+    out << " K=" << k;
+    if (matrix.skip_offsets == SkipOffsets::kAll && k > 0) {
+      out << ", from frame 0";
+      for (int p = 1; p <= k; ++p) out << " / " << p;
+    }
+    out << " |";
+  }
   out << "\n|---|---|";
   for (std::size_t k = 0; k < matrix.skips.size(); ++k) out << "---:|";
   out << "\n";
   for (const MatrixSequence& s : matrix.sequences)
     for (const std::string& mode : matrix.modes) {
       out << "| " << s.name << " | " << mode << " |";
-      for (int k : matrix.skips)
+      for (int k : matrix.skips) {
+        std::string cell;
         for (const Job& j : jobs)
-          if (j.sequence == s.name && j.mode == mode && j.skip == k) out << " " << ateCell(runOf(j, runs, runs_dir)) << " |";
+          if (j.sequence == s.name && j.mode == mode && j.skip == k) cell += (cell.empty() ? "" : " / ") + ateCell(runOf(j, runs, runs_dir));
+        out << " " << cell << " |";
+      }
       out << "\n";
     }
 }
@@ -287,7 +313,7 @@ void writeTimingTable(std::ostream& out, const std::vector<eval::RunEvaluation>&
     } catch (const InputError&) {
       continue;
     }
-    out << "| " << r.sequence << " | " << r.mode << (r.skip > 0 ? ", skip " + std::to_string(r.skip) : "") << " |";
+    out << "| " << r.sequence << " | " << eval::runLabel(r) << " |";
     for (const pipeline::ComponentTime& c : times) out << " " << (c.count > 0 ? formatText("%.2f", c.mean_ms) : "-") << " |";
     out << formatText(" %.1f |", r.realtime_factor);
     out << " " << (std::isfinite(r.latency_p50_ms) ? formatText("%.1f / %.1f", r.latency_p50_ms, r.latency_p99_ms) : "-")

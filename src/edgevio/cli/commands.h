@@ -61,7 +61,7 @@ int simulate(const SimulateArgs& args, std::ostream& out, std::ostream& err);
 struct RunArgs {
   io::SequenceSource source;
   std::string out, mode = "edge+imu+loop", config;  ///< default: the full system
-  int skip = 0;
+  int skip = 0, skip_offset = 0;
   bool realtime = false;
   int pictures_every = 10;
   std::string mcap;    ///< an MCAP recording to write (empty: none)

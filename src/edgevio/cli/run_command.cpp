@@ -18,6 +18,7 @@ int run(const RunArgs& a, std::ostream& out, std::ostream& err) {
     const std::optional<pipeline::Mode> mode = pipeline::parseMode(a.mode);
     if (!mode) throw InputError("--mode: unknown mode '" + a.mode + "': use " + pipeline::kModeNames);
     pipeline::RunRequest r(a.source.path, a.out, *mode, a.skip);
+    r.skip_offset = a.skip_offset;
     r.realtime = a.realtime;
     if (a.pictures_every < 0) throw InputError("--pictures-every must be >= 0 (0: no alignment pictures)");
     r.picture_stride = a.pictures_every;

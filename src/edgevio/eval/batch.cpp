@@ -61,6 +61,7 @@ RunEvaluation evaluateRun(const fs::path& dir, const fs::path& run, const EvalOp
     r.realtime_factor = number(summary["realtime_factor"], kNaN);
     r.peak_rss_mb = number(summary["peak_rss_mb"], kNaN);
     r.skip = static_cast<int>(number(summary["skip"], 0.0));
+    r.skip_offset = static_cast<int>(number(summary["skip_offset"], 0.0));
     if (const YAML::Node latency = summary["latency_ms"]; latency && latency.IsMap()) {
       r.latency_p50_ms = number(latency["p50"], kNaN);
       r.latency_p99_ms = number(latency["p99"], kNaN);
@@ -185,6 +186,13 @@ std::string statusText(const RunEvaluation& r) {
 }
 }  // namespace
 
+std::string runLabel(const RunEvaluation& r) {
+  std::string label = r.mode;
+  if (r.skip > 0) label += ", skip " + std::to_string(r.skip);
+  if (r.skip_offset > 0) label += " from frame " + std::to_string(r.skip_offset);
+  return label;
+}
+
 void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& runs, const EvalOptions& options) {
   std::size_t failures = 0;
   for (const auto& r : runs) failures += !r.ok;
@@ -204,7 +212,7 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
   for (std::size_t i = 0; i < options.rpe_deltas_m.size(); ++i) out << "---:|";
   out << "---:|---:|---:|\n";
   for (const auto& r : runs) {
-    out << "| " << r.sequence << " | " << r.mode << (r.skip > 0 ? ", skip " + std::to_string(r.skip) : "") << " | ";
+    out << "| " << r.sequence << " | " << runLabel(r) << " | ";
     const std::string frames = r.frames < 0 ? "-" : r.frames_to_process < 0 ? std::to_string(r.frames)
                                                      : std::to_string(r.frames) + "/" + std::to_string(r.frames_to_process);
     if (!r.ok) {
@@ -223,7 +231,7 @@ void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& ru
 void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
   out << "sequence,mode,folder,status,failure,matched,align,ate_rmse_m,ate_mean_m,ate_median_m,ate_max_m,"
          "are_rot_deg_per_m,are_trans_m_per_m,rpe_deltas_m,rpe_trans_rmse_m,rpe_rot_rmse_deg,length_m,duration_s,"
-         "realtime_factor,skip,peak_rss_mb,latency_p50_ms,latency_p99_ms,lost_intervals,lost_s,segments,segment_ate_max_m,"
+         "realtime_factor,skip,skip_offset,peak_rss_mb,latency_p50_ms,latency_p99_ms,lost_intervals,lost_s,segments,segment_ate_max_m,"
          "longest_loss_s,frames,frames_to_process,unaccounted_frames\n";
   for (const auto& r : runs) {
     out << csvField(r.sequence) << "," << csvField(r.mode) << "," << csvField(r.folder) << ","
@@ -244,7 +252,7 @@ void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs) {
     } else {
       out << ",,,,,,,,,,,,,";
     }
-    out << (std::isfinite(r.realtime_factor) ? num(r.realtime_factor, 2) : "") << "," << r.skip << ","
+    out << (std::isfinite(r.realtime_factor) ? num(r.realtime_factor, 2) : "") << "," << r.skip << "," << r.skip_offset << ","
         << (std::isfinite(r.peak_rss_mb) ? num(r.peak_rss_mb, 1) : "") << ","
         << (std::isfinite(r.latency_p50_ms) ? num(r.latency_p50_ms, 2) : "") << ","
         << (std::isfinite(r.latency_p99_ms) ? num(r.latency_p99_ms, 2) : "") << "," << r.lost_intervals << "," << num(r.lost_s, 3)

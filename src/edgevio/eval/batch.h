@@ -30,6 +30,7 @@ struct RunEvaluation {
   EvalResult result;
   double realtime_factor = 0.0;  ///< from summary.json when present, else NaN
   int skip = 0;                  ///< frames skipped between processed ones (summary.json "skip")
+  int skip_offset = 0;           ///< the first frame processed, 0..skip (summary.json "skip_offset")
   double peak_rss_mb = 0.0;      ///< the run's peak resident memory (summary.json "peak_rss_mb"), else NaN
   double latency_p50_ms = 0.0, latency_p99_ms = 0.0;  ///< summary.json "latency_ms" p50 and p99, else NaN
   int lost_intervals = 0;  ///< summary.json "lost_intervals": how many ...
@@ -58,6 +59,10 @@ std::vector<io::Trajectory> segmentsBetweenLosses(const io::Trajectory& est, con
 RunEvaluation evaluateRunFolder(const std::string& run_dir, const EvalOptions& options);
 
 std::vector<RunEvaluation> evaluateRunFolders(const std::string& dir, const EvalOptions& options);
+
+/// A run's row label in the reports: its mode, then ", skip K" and
+/// " from frame P" where they are not 0.
+std::string runLabel(const RunEvaluation& r);
 
 void writeReportMarkdown(std::ostream& out, const std::vector<RunEvaluation>& runs, const EvalOptions& options);
 void writeReportCsv(std::ostream& out, const std::vector<RunEvaluation>& runs);

@@ -29,14 +29,16 @@ double peakResidentMb() {
 
 void validate(const RunRequest& req, const Config& config) {
   if (req.skip < 0) throw InputError("--skip must be >= 0");
+  if (req.skip_offset < 0 || req.skip_offset > req.skip)
+    throw InputError("--skip-offset must be between 0 and --skip (" + std::to_string(req.skip) + ")");
   const std::string invalid = config.validate();
   if (!invalid.empty()) throw InputError("invalid configuration: " + invalid);
 }
 
-/// Every (skip+1)-th frame of the sequence.
-std::vector<std::size_t> framesToRun(const io::Sequence& sequence, int skip) {
+/// Every (skip+1)-th frame of the sequence from the offset-th on.
+std::vector<std::size_t> framesToRun(const io::Sequence& sequence, int skip, int offset) {
   std::vector<std::size_t> frames;
-  for (std::size_t i = 0; i < sequence.frameCount(); i += static_cast<std::size_t>(skip) + 1) frames.push_back(i);
+  for (auto i = static_cast<std::size_t>(offset); i < sequence.frameCount(); i += static_cast<std::size_t>(skip) + 1) frames.push_back(i);
   return frames;
 }
 
@@ -46,6 +48,7 @@ RunSummary startSummary(const RunRequest& req, const io::Sequence& sequence) {
   s.sequence = sequence.name();
   s.dataset = sequence.location();
   s.skip = req.skip;
+  s.skip_offset = req.skip_offset;
   s.realtime = req.realtime;
   s.duration_s = toSeconds(sequence.frameTime(sequence.frameCount() - 1) - sequence.frameTime(0));
   s.stereo_pairs = sequence.frameCount();
@@ -76,13 +79,17 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
   validate(req, config);
   const std::unique_ptr<io::Sequence> sequence = io::openSequence({req.dataset, req.calib, req.topics}, config.dataset);
   if (sequence->frameCount() == 0) throw InputError(req.dataset, 0, "no stereo pairs to process");
+  const std::vector<std::size_t> frames = framesToRun(*sequence, req.skip, req.skip_offset);
+  if (frames.empty())
+    throw InputError(req.dataset, 0, "--skip-offset " + std::to_string(req.skip_offset) + " is past its " +
+                                         std::to_string(sequence->frameCount()) + " stereo pair(s): use a smaller offset");
   const camera::StereoRectifier rect(sequence->calibration(), config.rectification);
   RunWriter writer(req.out_dir, config, req.mode.imu);
   RunSummary s = startSummary(req, *sequence);
   if (observer.opened) observer.opened(*sequence);
 
   // Static start: gravity-aligned initial orientation and gyro bias (METHOD.md §5).
-  const std::int64_t t0 = sequence->frameTime(0);
+  const std::int64_t t0 = sequence->frameTime(frames.front());
   const tracking::TrackingOptions& to = config.tracking;
   const imu::StaticInit init = imu::staticInitialization(sequence->imu(), t0, to.static_init_window_s, to.static_chunk_s,
                                                          to.static_accel_std_max, to.static_gyro_std_max);
@@ -94,12 +101,11 @@ RunSummary run(const RunRequest& req, const Config& config, const RunObserver& o
   Odometry odometry(req.mode, config, *tracker, rect.T_b_rect(0), sequence->calibration().imu, sequence->imu(), init, req.realtime,
                     req.picture_stride > 0);
 
-  const std::vector<std::size_t> frames = framesToRun(*sequence, req.skip);
   s.frames_to_process = frames.size();
   std::optional<ImuRateOutput> imu_rate;
   if (req.mode.imu)
     imu_rate.emplace(sequence->imu(), config.estimator.max_imu_gap_s,
-                     req.out_dir + "/trajectory_imu_rate_tum.txt", req.realtime, sequence->frameTime(frames.front()),
+                     req.out_dir + "/trajectory_imu_rate_tum.txt", req.realtime, t0,
                      Clock::now());
   std::size_t done = 0;
   const PipelineResult p = runThreaded(*sequence, frames, rect, config.vision, req.realtime, [&](PipelineFrame item) {

@@ -27,6 +27,7 @@ struct RunRequest {
   std::string out_dir;
   Mode mode;              ///< default: the full system
   int skip = 0;           ///< keep every (skip+1)-th stereo frame; the IMU is untouched
+  int skip_offset = 0;    ///< the first frame kept, 0..skip: the skip+1 offsets together use every frame once
   bool realtime = false;  ///< release frames at their timestamps; drop those the pipeline has no room for
   std::string calib;      ///< a bag's calibration (empty: found beside it)
   io::BagTopics topics;   ///< a bag's topics (empty: found by type)

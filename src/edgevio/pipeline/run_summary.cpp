@@ -126,6 +126,7 @@ const std::vector<SummaryField>& summaryFields() {
       {"dataset", "where it was read from (absolute; `edgevio eval --results` finds the ground truth there)",
        member<&S::dataset>},
       {"skip", "frames skipped between processed ones (--skip)", member<&S::skip>},
+      {"skip_offset", "the first frame processed, 0..skip (--skip-offset)", member<&S::skip_offset>},
       {"frames", "frames processed (rows of frames.csv)", member<&S::frames>},
       {"keyframes", "keyframes made", member<&S::keyframes>},
       {"self_check_failures", "alignments that failed their self check", member<&S::self_check_failures>},

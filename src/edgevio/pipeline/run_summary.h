@@ -24,7 +24,7 @@ struct LostInterval {
 
 struct RunSummary {
   std::string mode, sequence, dataset;
-  int skip = 0;
+  int skip = 0, skip_offset = 0;
   bool realtime = false;
   bool static_initialization = false;
   std::size_t frames = 0, keyframes = 0, self_check_failures = 0;
