@@ -242,6 +242,15 @@ const eval::RunEvaluation* runOf(const Job& j, const std::vector<eval::RunEvalua
   return nullptr;
 }
 
+/// The ATE cells of the jobs `pick` selects, side by side: "a / b".
+std::string ateCells(const std::vector<Job>& jobs, const std::function<bool(const Job&)>& pick,
+                     const std::vector<eval::RunEvaluation>& runs, const std::string& runs_dir) {
+  std::string cells;
+  for (const Job& j : jobs)
+    if (pick(j)) cells += (cells.empty() ? "" : " / ") + ateCell(runOf(j, runs, runs_dir));
+  return cells;
+}
+
 /// ATE [m] per sequence (its seeds side by side) and mode, at the first skip.
 void writeAteByMode(std::ostream& out, const Matrix& matrix, const std::vector<Job>& jobs, const std::vector<eval::RunEvaluation>& runs,
                     const std::string& runs_dir) {
@@ -256,11 +265,8 @@ void writeAteByMode(std::ostream& out, const Matrix& matrix, const std::vector<J
   for (const std::string& g : groups) {
     out << "| " << g << " |";
     for (const std::string& mode : matrix.modes) {
-      std::string cell;
-      for (const Job& j : jobs)
-        if (j.group == g && j.mode == mode && j.skip == matrix.skips[0] && j.skip_offset == 0)
-          cell += (cell.empty() ? "" : " / ") + ateCell(runOf(j, runs, runs_dir));
-      out << " " << cell << " |";
+      const auto pick = [&](const Job& j) { return j.group == g && j.mode == mode && j.skip == matrix.skips[0] && j.skip_offset == 0; };
+      out << " " << ateCells(jobs, pick, runs, runs_dir) << " |";
     }
     out << "\n";
   }
@@ -286,10 +292,8 @@ void writeAteBySkip(std::ostream& out, const Matrix& matrix, const std::vector<J
     for (const std::string& mode : matrix.modes) {
       out << "| " << s.name << " | " << mode << " |";
       for (int k : matrix.skips) {
-        std::string cell;
-        for (const Job& j : jobs)
-          if (j.sequence == s.name && j.mode == mode && j.skip == k) cell += (cell.empty() ? "" : " / ") + ateCell(runOf(j, runs, runs_dir));
-        out << " " << cell << " |";
+        const auto pick = [&](const Job& j) { return j.sequence == s.name && j.mode == mode && j.skip == k; };
+        out << " " << ateCells(jobs, pick, runs, runs_dir) << " |";
       }
       out << "\n";
     }
